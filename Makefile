@@ -1,0 +1,100 @@
+# SPDX-License-Identifier: GPL-2.0
+#
+# Advee low-level stack: the one entry point.
+#
+#   make                 kernel modules (amd64, W=1) + userland + VM test programs
+#   make ARCH=arm        cross-build modules for armhf (armmp) and armel (marvell),
+#                        userland and static test programs for both
+#   make check           everything the README's test command runs (see docs/testing.md)
+#   make check TEST=name one VM test (suite or suite/program) on the x86_64 lane
+#   make demo            the main job: boot the VM with the project's modules
+#   make deps            install what this machine lacks (idempotent)
+#   make gates           W=1 + checkpatch --strict + sparse on the kernel sources
+#   make unit            CTest (plain and ASan/UBSan)
+#   make vm-x86 / vm-arm one VM lane
+#   make clean
+#
+# KDIR=... builds the modules against another kernel tree (default: Debian's
+# newest installed 6.1 amd64 headers). V=1 shows full commands.
+
+SHELL := /bin/bash
+TOP := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
+BUILD := $(TOP)/build
+
+# The kernel release the x86_64 VM boots and the modules are built for.
+KVER ?= $(shell $(TOP)/scripts/kver.sh)
+KDIR ?= /usr/src/linux-headers-$(KVER)
+
+# Sources that make up the Kbuild tree (copied per target, see build-kmod.sh).
+KSRC_DIRS := kernel tsuart-fix rs485proto i2c-max6615 tests/kmod
+
+TEST ?=
+export KVER KDIR TOP BUILD
+
+.PHONY: all default modules userland testprogs arm arm-modules arm-userland arm-testprogs \
+	check unit unit-asan gates vm-x86 vm-arm demo deps clean help
+
+ifeq ($(ARCH),arm)
+default: arm
+else
+default: all
+endif
+
+all: modules userland testprogs
+
+help:
+	@sed -n '3,22p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
+
+deps:
+	@$(TOP)/scripts/deps.sh
+
+# Kernel modules ------------------------------------------------------------
+modules:
+	@$(TOP)/scripts/build-kmod.sh x86_64 "$(KDIR)"
+
+# ARCH=arm is also in the environment of the sub-makes; the scripts set what
+# each target needs explicitly.
+arm: arm-modules arm-userland arm-testprogs
+
+arm-modules:
+	@$(TOP)/scripts/build-kmod.sh armhf
+	@$(TOP)/scripts/build-kmod.sh armel
+
+# User space ------------------------------------------------------------------
+userland:
+	@$(TOP)/scripts/build-userland.sh native
+
+arm-userland:
+	@$(TOP)/scripts/build-userland.sh armhf
+	@$(TOP)/scripts/build-userland.sh armel
+
+# VM test programs (tests/vm/<suite>/*.c) --------------------------------------
+testprogs:
+	@$(TOP)/scripts/build-testprogs.sh x86_64
+
+arm-testprogs:
+	@$(TOP)/scripts/build-testprogs.sh armhf
+
+# Tests -----------------------------------------------------------------------
+check:
+	@$(TOP)/scripts/check.sh $(if $(TEST),--test "$(TEST)")
+
+unit:
+	@$(TOP)/scripts/unit.sh
+
+gates:
+	@$(TOP)/scripts/kernel-gates.sh
+
+vm-x86: modules testprogs
+	@$(TOP)/tests/harness/vm-x86.sh $(if $(TEST),--test "$(TEST)")
+
+vm-arm:
+	@$(TOP)/scripts/build-kmod.sh armhf
+	@$(TOP)/scripts/build-testprogs.sh armhf
+	@$(TOP)/tests/harness/vm-arm.sh $(if $(TEST),--test "$(TEST)")
+
+demo:
+	@$(TOP)/scripts/demo.sh
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# build-kmod.sh TARGET [KDIR]: build every module of the project's Kbuild tree
+# with W=1 for one target kernel. TARGET is x86_64 (KDIR defaults to Debian's
+# amd64 headers), armhf (armmp), armel (marvell) or any name with an explicit
+# KDIR. The sources are mirrored into build/kmod/TARGET so that targets never
+# share objects; a compiler warning fails the build (W=1 must be clean).
+# Output: build/kmod/TARGET/modules.list, one .ko path per line.
+set -euo pipefail
+. "$(dirname "$0")/lib.sh"
+
+target=${1:?target}
+kdir=${2:-}
+make_args=(W=1)
+case $target in
+x86_64)
+	kdir=${kdir:-/usr/src/linux-headers-$("$TOP/scripts/kver.sh")}
+	;;
+armhf|armel)
+	root=$(arm_tree "$target" "$(arm_flavour "$target")")
+	kdir=${kdir:-$(ls -d "$root"/usr/src/linux-headers-*-"$(arm_flavour "$target")" | head -1)}
+	make_args+=(ARCH=arm CROSS_COMPILE="$(cross_prefix "$target")")
+	;;
+*)
+	[ -n "$kdir" ] || die "target $target needs an explicit KDIR"
+	;;
+esac
+[ -f "$kdir/Makefile" ] || die "no kernel build tree at $kdir (run: make deps)"
+
+out=$BUILD/kmod/$target
+mkdir -p "$out"
+# rsync flattens the listed dirs; rebuild the tree layout explicitly.
+for d in $KSRC_DIRS; do
+	mkdir -p "$out/$d"
+	rsync -a --delete --include='*/' --include='*.[ch]' --include='Kbuild' --include='*.S' \
+		--exclude='*' "$TOP/$d/" "$out/$d/"
+done
+cp -p "$TOP/Kbuild" "$out/Kbuild"
+
+say "kernel modules for $target ($kdir)"
+log=$out/build.log
+if ! make -C "$kdir" M="$out" "${make_args[@]}" ${V:+V=$V} -j"$(nproc)" modules >"$log" 2>&1; then
+	cat "$log" >&2
+	die "module build for $target failed"
+fi
+# Warnings from our sources (not from the headers' own tooling notes) fail W=1.
+if grep -E '(warning|error):' "$log" | grep -v 'Skipping BTF generation' >&2; then
+	die "module build for $target has warnings (W=1 must be clean); full log: $log"
+fi
+# modules.order holds paths relative to M= or absolute ones, depending on the kbuild.
+sed "s|\.o$|.ko|; \|^/|!s|^|$out/|" "$out/modules.order" > "$out/modules.list"
+echo "$kdir" > "$out/kdir"
+while read -r ko; do printf '    %s\n' "${ko#"$out"/}" >&2; done < "$out/modules.list"

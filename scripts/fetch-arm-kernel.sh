@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# Fetch Debian's ARM kernel image + headers (and a static busybox for the
+# armhf test initramfs) into the project's cache, without adding a foreign
+# architecture to dpkg: apt runs with a private lists dir, an empty dpkg
+# status and only the Debian sources of this machine.
+#
+# usage: scripts/fetch-arm-kernel.sh DEBARCH FLAVOUR   e.g. armhf armmp, armel marvell
+# prints the root of the extracted tree (contains usr/src/linux-headers-*,
+# lib/modules/*, boot/vmlinuz-*).
+set -euo pipefail
+
+debarch=${1:?debian architecture (armhf|armel)}
+flavour=${2:?kernel flavour (armmp|marvell)}
+top=$(cd "$(dirname "$0")/.." && pwd)
+cache=${ADVEE_CACHE:-$top/.cache}/arm/$debarch
+mkdir -p "$cache/lists/partial" "$cache/sources" "$cache/debs"
+: > "$cache/status"
+
+# Only Debian's own sources: third-party repositories rarely carry ARM.
+src_found=0
+for f in /etc/apt/sources.list.d/debian.sources /etc/apt/sources.list; do
+	if [ -s "$f" ] && grep -qi 'debian' "$f"; then
+		cp "$f" "$cache/sources/$(basename "$f")"
+		src_found=1
+	fi
+done
+[ "$src_found" = 1 ] || { echo "fetch-arm-kernel: no Debian apt sources on this machine" >&2; exit 1; }
+[ -f "$cache/sources/sources.list" ] || : > "$cache/sources/sources.list"
+
+apt_opts=(-q -oAPT::Architecture="$debarch" -oAPT::Architectures="$debarch"
+	-oDir::State::Lists="$cache/lists" -oDir::State::status="$cache/status"
+	-oDir::Etc::SourceParts="$cache/sources" -oDir::Etc::SourceList="$cache/sources/sources.list"
+	-oDir::Cache="$cache/apt-cache" -oDebug::NoLocking=1)
+mkdir -p "$cache/apt-cache/archives/partial"
+
+# The host's kbuild (amd64, Multi-Arch: foreign) builds for every architecture;
+# prefer the ARM kernel of exactly that version so the tools match.
+host_kbuild=$(dpkg-query -W -f='${Version}' linux-kbuild-6.1 2>/dev/null || true)
+
+stamp="$cache/extracted.stamp"
+if [ -f "$stamp" ] && [ -d "$cache/root/lib/modules" ]; then
+	cat "$cache/root.path" 2>/dev/null || echo "$cache/root"
+	exit 0
+fi
+
+# One source failing (a security index out of sync) must not stop us when the
+# main archive answered; what follows checks for the packages themselves.
+apt-get "${apt_opts[@]}" update >"$cache/update.log" 2>&1 ||
+	echo "fetch-arm-kernel: apt-get update reported errors (see $cache/update.log); continuing" >&2
+
+meta=linux-image-$flavour
+abi=$(apt-cache "${apt_opts[@]}" depends "$meta" 2>/dev/null |
+	sed -n "s/.*Depends: linux-image-\(6\.1\.0-[0-9]*\)-$flavour.*/\1/p" | sort -V | tail -1)
+[ -n "$abi" ] || { echo "fetch-arm-kernel: cannot resolve $meta for $debarch" >&2; exit 1; }
+img=linux-image-$abi-$flavour
+# Debian sometimes ships the unsigned image under an -unsigned name.
+if ! apt-cache "${apt_opts[@]}" show "$img" >/dev/null 2>&1; then
+	img=linux-image-$abi-$flavour-unsigned
+fi
+ver=$(apt-cache "${apt_opts[@]}" show "$img" | sed -n 's/^Version: //p' | sort -V | tail -1)
+pkgs=("$img=$ver" "linux-headers-$abi-$flavour=$ver" "linux-headers-$abi-common=$ver")
+[ "$debarch" = armhf ] && pkgs+=(busybox-static)
+
+# Debian's headers depend on linux-kbuild-6.1 (>= their version): a newer host
+# kbuild of the same 6.1 series is what Debian itself accepts.
+if [ -z "$host_kbuild" ] || dpkg --compare-versions "$host_kbuild" lt "$ver"; then
+	echo "fetch-arm-kernel: $debarch kernel is $ver, host linux-kbuild-6.1 is ${host_kbuild:-missing}; installing $ver" >&2
+	DEBIAN_FRONTEND=noninteractive apt-get install -y -q "linux-kbuild-6.1=$ver" >&2 || {
+		echo "fetch-arm-kernel: linux-kbuild-6.1=$ver is not installable on the host" >&2; exit 1; }
+fi
+
+(cd "$cache/debs" && apt-get "${apt_opts[@]}" download "${pkgs[@]}" >"$cache/download.log" 2>&1) || {
+	echo "fetch-arm-kernel: download failed:" >&2; tail -5 "$cache/download.log" >&2; exit 1; }
+
+rm -rf "$cache/root"
+mkdir -p "$cache/root"
+for deb in "$cache"/debs/*.deb; do
+	dpkg-deb -x "$deb" "$cache/root"
+done
+
+# The flavour's headers include the -common tree by absolute path and link
+# scripts/tools to the host's kbuild: re-point both into this tree.
+hdr="$cache/root/usr/src/linux-headers-$abi-$flavour"
+common="$cache/root/usr/src/linux-headers-$abi-common"
+printf 'include %s/Makefile\n' "$common" > "$hdr/Makefile"
+for l in scripts tools; do
+	rm -f "$hdr/$l"
+	ln -s /usr/lib/linux-kbuild-6.1/$l "$hdr/$l"
+done
+# The -common tree links its scripts/tools the same way (relative links break here).
+for l in scripts tools; do
+	if [ -L "$common/$l" ] || [ ! -e "$common/$l" ]; then
+		rm -f "$common/$l"
+		ln -s /usr/lib/linux-kbuild-6.1/$l "$common/$l"
+	fi
+done
+echo "$abi-$flavour" > "$cache/kernelrelease"
+echo "$cache/root" > "$cache/root.path"
+touch "$stamp"
+echo "$cache/root"
