@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: GPL-2.0
+// The passive CANopen master engine: no threads, no I/O, no clock of its own.
+// Whoever owns it (the event loop, or a unit test with a virtual bus and a
+// manual clock) feeds received frames to handle(), calls poll() when
+// next_deadline() has passed, and transmits what comes out of the FrameSender.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "advee/canopen/clock.hpp"
+#include "advee/canopen/emcy.hpp"
+#include "advee/canopen/frame.hpp"
+#include "advee/canopen/heartbeat.hpp"
+#include "advee/canopen/nmt.hpp"
+#include "advee/canopen/sdo_client.hpp"
+#include "advee/canopen/sync.hpp"
+
+namespace advee::canopen {
+
+struct MasterConfig {
+  std::uint8_t node_id = 0x7F;  // the master's own node-ID (heartbeat producer)
+  Duration sdo_timeout = SdoClient::kDefaultTimeout;
+  Duration heartbeat_period{};  // zero: the master does not produce heartbeat
+};
+
+class Master {
+ public:
+  using FrameListener = std::function<void(const CanFrame&)>;
+  using ListenerId = std::uint64_t;
+
+  Master(MasterConfig cfg, FrameSender send, NowFn now);
+  Master(const Master&) = delete;
+  Master& operator=(const Master&) = delete;
+
+  void handle(const CanFrame& frame);
+  void poll();
+  std::optional<TimePoint> next_deadline() const;
+  TimePoint now() const { return now_(); }
+
+  // NMT master. node 0 = all nodes.
+  void nmt(NmtCommand cmd, std::uint8_t node);
+
+  // One SDO client (and queue) per server node, created on first use.
+  SdoClient& sdo(std::uint8_t node);
+
+  HeartbeatConsumer& heartbeat_consumer() { return hb_consumer_; }
+  HeartbeatProducer& heartbeat_producer() { return hb_producer_; }
+  SyncProducer& sync() { return sync_; }
+  void send_time(std::chrono::system_clock::time_point t);
+
+  void add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb);
+  void add_emcy_listener(std::function<void(const Emcy&)> cb);
+  // Frames with this CAN-ID (a device's TPDO) go to cb.
+  ListenerId subscribe(std::uint32_t can_id, FrameListener cb);
+  void unsubscribe(ListenerId id);
+  // Any frame not consumed by a protocol object (monitors, tools).
+  void set_fallback_listener(FrameListener cb) { fallback_ = std::move(cb); }
+
+  void send(const CanFrame& f) { send_(f); }
+  const MasterConfig& config() const { return cfg_; }
+
+ private:
+  void on_heartbeat(const HeartbeatUpdate& u);
+
+  MasterConfig cfg_;
+  FrameSender send_;
+  NowFn now_;
+  std::map<std::uint8_t, std::unique_ptr<SdoClient>> sdo_;
+  HeartbeatConsumer hb_consumer_;
+  HeartbeatProducer hb_producer_;
+  SyncProducer sync_;
+  std::vector<std::function<void(const HeartbeatUpdate&)>> hb_listeners_;
+  std::vector<std::function<void(const Emcy&)>> emcy_listeners_;
+  struct Subscription {
+    ListenerId id;
+    FrameListener cb;
+  };
+  std::unordered_map<std::uint32_t, std::vector<Subscription>> pdo_listeners_;
+  ListenerId next_id_ = 1;
+  FrameListener fallback_;
+};
+
+}  // namespace advee::canopen

@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: GPL-2.0
+#include "advee/canopen/master.hpp"
+
+#include <algorithm>
+
+namespace advee::canopen {
+
+Master::Master(MasterConfig cfg, FrameSender send, NowFn now)
+    : cfg_(cfg),
+      send_(std::move(send)),
+      now_(std::move(now)),
+      hb_consumer_(now_, [this](const HeartbeatUpdate& u) { on_heartbeat(u); }),
+      hb_producer_(cfg_.node_id, send_, now_),
+      sync_(send_, now_) {
+  if (cfg_.heartbeat_period.count() > 0) hb_producer_.set_period(cfg_.heartbeat_period);
+}
+
+void Master::handle(const CanFrame& f) {
+  if (f.id >= cob::kSdoTx + 1 && f.id <= cob::kSdoTx + 127) {
+    auto it = sdo_.find(static_cast<std::uint8_t>(f.id - cob::kSdoTx));
+    if (it != sdo_.end() && it->second->handle(f)) return;
+  } else if (hb_consumer_.handle(f)) {
+    return;
+  } else if (auto e = decode_emcy(f)) {
+    for (auto& cb : emcy_listeners_) cb(*e);
+    return;
+  }
+  auto it = pdo_listeners_.find(f.id);
+  if (it != pdo_listeners_.end() && !f.rtr && !it->second.empty()) {
+    // Copy: a listener may unsubscribe while we iterate.
+    auto subs = it->second;
+    for (auto& s : subs) s.cb(f);
+    return;
+  }
+  if (fallback_) fallback_(f);
+}
+
+void Master::on_heartbeat(const HeartbeatUpdate& u) {
+  // A node that rebooted forgets every pending SDO transfer.
+  if (u.event == HeartbeatEvent::kBootUp) {
+    auto it = sdo_.find(u.node);
+    if (it != sdo_.end() && it->second->busy()) it->second->cancel_all(SdoAbort::kGeneral);
+  }
+  for (auto& cb : hb_listeners_) cb(u);
+}
+
+void Master::poll() {
+  for (auto& [node, c] : sdo_) c->poll();
+  hb_consumer_.poll();
+  hb_producer_.poll();
+  sync_.poll();
+}
+
+std::optional<TimePoint> Master::next_deadline() const {
+  std::optional<TimePoint> d;
+  auto take = [&d](std::optional<TimePoint> t) {
+    if (t && (!d || *t < *d)) d = t;
+  };
+  for (auto& [node, c] : sdo_) take(c->deadline());
+  take(hb_consumer_.deadline());
+  take(hb_producer_.deadline());
+  take(sync_.deadline());
+  return d;
+}
+
+void Master::nmt(NmtCommand cmd, std::uint8_t node) { send_(nmt_command_frame(cmd, node)); }
+
+SdoClient& Master::sdo(std::uint8_t node) {
+  auto& c = sdo_[node];
+  if (!c) c = std::make_unique<SdoClient>(node, send_, now_, cfg_.sdo_timeout);
+  return *c;
+}
+
+void Master::send_time(std::chrono::system_clock::time_point t) { send_(time_of_day_frame(t)); }
+
+void Master::add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb) {
+  hb_listeners_.push_back(std::move(cb));
+}
+
+void Master::add_emcy_listener(std::function<void(const Emcy&)> cb) { emcy_listeners_.push_back(std::move(cb)); }
+
+Master::ListenerId Master::subscribe(std::uint32_t can_id, FrameListener cb) {
+  const ListenerId id = next_id_++;
+  pdo_listeners_[can_id].push_back({id, std::move(cb)});
+  return id;
+}
+
+void Master::unsubscribe(ListenerId id) {
+  for (auto& [can_id, subs] : pdo_listeners_)
+    std::erase_if(subs, [id](const Subscription& s) { return s.id == id; });
+}
+
+}  // namespace advee::canopen
