@@ -1,0 +1,551 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * TS-UART: serial_core driver for the TS-7800 FPGA UARTs.
+ *
+ * One tty (ttyTSUn) per hardware port and one receive path: only the ISR of
+ * the open port reads DATA, which fixes the vendor driver's 8-bit/9-bit twin
+ * devices stealing each other's characters. 9-bit characters use standard
+ * termios: PARENB | CMSPAR sends PARODD as the 9th bit and flags received
+ * characters with the other 9th bit as TTY_PARITY (see ts-uart-frame.c).
+ *
+ * The port is a child of the FPGA core (or of the simulator): registers are
+ * reached through the parent's regmap, the interrupt is the parent's.
+ */
+#include <linux/bitfield.h>
+#include <linux/interrupt.h>
+#include <linux/mod_devicetable.h>
+#include <linux/module.h>
+#include <linux/platform_device.h>
+#include <linux/regmap.h>
+#include <linux/serial.h>
+#include <linux/serial_core.h>
+#include <linux/tty.h>
+#include <linux/tty_flip.h>
+#include <linux/ts7800-fpga.h>
+
+#include "ts-uart-frame.h"
+
+#define TS_UART_DRV_NAME	"ts-uart"
+#define TS_UART_DEV_NAME	"ttyTSU"
+/* Out-of-tree drivers have no PORT_* constant; any non-zero type works. */
+#define TS_UART_PORT_TYPE	1
+#define TS_UART_MIN_BAUD	2400
+#define TS_UART_MAX_BAUD	115200
+/* Nominal FIFO size advertised to serial_core (the real depth is unknown). */
+#define TS_UART_FIFO_SIZE	16
+/*
+ * Upper bound of STAT reads per interrupt. Characters arrive far slower than
+ * the ISR reads them, so the bound is never reached in practice; it only
+ * stops a broken device from locking up the CPU.
+ */
+#define TS_UART_ISR_BUDGET	4096
+#define TS_UART_FLUSH_BUDGET	256
+
+/* Driver-private status bits for read/ignore_status_mask and uart_insert_char. */
+#define TS_UART_ST_DR		BIT(0)
+#define TS_UART_ST_PE		BIT(1)
+#define TS_UART_ST_FE		BIT(2)
+#define TS_UART_ST_BRK		BIT(3)
+#define TS_UART_ST_OE		BIT(4)
+
+struct ts_uart {
+	struct uart_port port;
+	struct regmap *map;
+	unsigned int stat_reg;
+	unsigned int data_reg;
+	u16 ctrl;			/* control bits of STAT; port lock */
+	struct ts_uart_frame frame;	/* port lock */
+};
+
+static inline struct ts_uart *to_ts_uart(struct uart_port *port)
+{
+	return container_of(port, struct ts_uart, port);
+}
+
+static int ts_uart_read_stat(struct ts_uart *up, unsigned int *stat)
+{
+	return regmap_read(up->map, up->stat_reg, stat);
+}
+
+/* STAT status bits ignore writes, so the control shadow is written whole. */
+static void ts_uart_write_ctrl(struct ts_uart *up)
+{
+	regmap_write(up->map, up->stat_reg, up->ctrl);
+}
+
+static void ts_uart_overrun(struct ts_uart *up)
+{
+	struct uart_port *port = &up->port;
+
+	port->icount.overrun++;
+	if (!(port->ignore_status_mask & TS_UART_ST_OE))
+		tty_insert_flip_char(&port->state->port, 0, TTY_OVERRUN);
+}
+
+static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
+{
+	struct uart_port *port = &up->port;
+	unsigned int word, status = TS_UART_ST_DR, err;
+	char flag = TTY_NORMAL;
+	u8 ch;
+
+	if (regmap_read(up->map, up->data_reg, &word))
+		return;
+	port->icount.rx++;
+
+	if (stat & TS7800_STAT_RXBRK) {
+		ch = 0;
+		status |= TS_UART_ST_BRK;
+		port->icount.brk++;
+		if (uart_handle_break(port))
+			return;
+	} else {
+		err = ts_uart_frame_decode(&up->frame, word, &ch);
+		if (err & TS_UART_RX_PARITY) {
+			status |= TS_UART_ST_PE;
+			port->icount.parity++;
+		}
+		if (err & TS_UART_RX_FRAME) {
+			status |= TS_UART_ST_FE;
+			port->icount.frame++;
+		}
+	}
+	if (stat & TS7800_STAT_OERR) {
+		status |= TS_UART_ST_OE;
+		port->icount.overrun++;
+	}
+	/* stop_rx(): keep draining the FIFO, deliver nothing. */
+	if (!(port->read_status_mask & TS_UART_ST_DR))
+		return;
+
+	status &= port->read_status_mask;
+	if (status & TS_UART_ST_BRK)
+		flag = TTY_BREAK;
+	else if (status & TS_UART_ST_PE)
+		flag = TTY_PARITY;
+	else if (status & TS_UART_ST_FE)
+		flag = TTY_FRAME;
+
+	if (uart_handle_sysrq_char(port, ch))
+		return;
+	uart_insert_char(port, status, TS_UART_ST_OE, ch, flag);
+}
+
+/* Called with the port lock held and STAT just read showing TBRE. */
+static void ts_uart_tx_chars(struct ts_uart *up, unsigned int stat)
+{
+	struct uart_port *port = &up->port;
+	struct circ_buf *xmit = &port->state->xmit;
+	u16 word;
+
+	while (stat & TS7800_STAT_TBRE) {
+		if (port->x_char) {
+			word = ts_uart_frame_encode(&up->frame, port->x_char);
+			port->x_char = 0;
+			port->icount.tx++;
+		} else if (!uart_circ_empty(xmit) && !uart_tx_stopped(port)) {
+			word = ts_uart_frame_encode(&up->frame, xmit->buf[xmit->tail]);
+			uart_xmit_advance(port, 1);
+		} else {
+			break;
+		}
+		if (regmap_write(up->map, up->data_reg, word) ||
+		    ts_uart_read_stat(up, &stat))
+			break;
+	}
+	if (uart_circ_chars_pending(xmit) < WAKEUP_CHARS)
+		uart_write_wakeup(port);
+}
+
+/*
+ * Serve the port until it has nothing more to say: no received character
+ * left and no room or nothing to transmit. Ending only then makes the ISR
+ * correct for level-triggered and for edge-triggered (event) sources.
+ * Returns true if characters were queued to the tty.
+ */
+static bool ts_uart_service(struct ts_uart *up)
+{
+	unsigned int stat, n;
+	bool rx = false;
+
+	for (n = 0; n < TS_UART_ISR_BUDGET; n++) {
+		if (ts_uart_read_stat(up, &stat))
+			break;
+		if (stat & TS7800_STAT_DR) {
+			ts_uart_rx_char(up, stat);
+			rx = true;
+			continue;
+		}
+		if (stat & TS7800_STAT_OERR) {
+			ts_uart_overrun(up);
+			rx = true;
+		}
+		if (stat & TS7800_STAT_TBRE)
+			ts_uart_tx_chars(up, stat);
+		break;
+	}
+	if (n == TS_UART_ISR_BUDGET)
+		dev_err_ratelimited(up->port.dev, "receive data ready never clears\n");
+	return rx;
+}
+
+static irqreturn_t ts_uart_isr(int irq, void *dev_id)
+{
+	struct ts_uart *up = dev_id;
+	unsigned long flags;
+	bool rx;
+
+	uart_port_lock_irqsave(&up->port, &flags);
+	rx = ts_uart_service(up);
+	uart_port_unlock_irqrestore(&up->port, flags);
+	if (rx)
+		tty_flip_buffer_push(&up->port.state->port);
+	return IRQ_HANDLED;
+}
+
+static unsigned int ts_uart_tx_empty(struct uart_port *port)
+{
+	struct ts_uart *up = to_ts_uart(port);
+	unsigned int stat;
+
+	if (ts_uart_read_stat(up, &stat))
+		return 0;
+	return (stat & TS7800_STAT_TRE) ? TIOCSER_TEMT : 0;
+}
+
+static void ts_uart_set_mctrl(struct uart_port *port, unsigned int mctrl)
+{
+	struct ts_uart *up = to_ts_uart(port);
+
+	if (mctrl & TIOCM_RTS)
+		up->ctrl |= TS7800_STAT_RTS;
+	else
+		up->ctrl &= ~TS7800_STAT_RTS;
+	ts_uart_write_ctrl(up);
+}
+
+static unsigned int ts_uart_get_mctrl(struct uart_port *port)
+{
+	struct ts_uart *up = to_ts_uart(port);
+	unsigned int stat, mctrl = TIOCM_CAR | TIOCM_DSR;
+
+	/* The port has no DCD/DSR lines: report them asserted, like a 3-wire port. */
+	if (!ts_uart_read_stat(up, &stat) && (stat & TS7800_STAT_CTS))
+		mctrl |= TIOCM_CTS;
+	return mctrl;
+}
+
+/* No transmit interrupt to disable: the FIFO just runs dry. */
+static void ts_uart_stop_tx(struct uart_port *port)
+{
+}
+
+static void ts_uart_start_tx(struct uart_port *port)
+{
+	struct ts_uart *up = to_ts_uart(port);
+	unsigned int stat;
+
+	if (!ts_uart_read_stat(up, &stat))
+		ts_uart_tx_chars(up, stat);
+}
+
+static void ts_uart_stop_rx(struct uart_port *port)
+{
+	port->read_status_mask &= ~TS_UART_ST_DR;
+}
+
+static void ts_uart_break_ctl(struct uart_port *port, int break_state)
+{
+	struct ts_uart *up = to_ts_uart(port);
+	unsigned long flags;
+
+	uart_port_lock_irqsave(port, &flags);
+	if (break_state)
+		up->ctrl |= TS7800_STAT_TXBRK;
+	else
+		up->ctrl &= ~TS7800_STAT_TXBRK;
+	ts_uart_write_ctrl(up);
+	uart_port_unlock_irqrestore(port, flags);
+}
+
+/* Discard what arrived while the port was closed (and a stale OERR). */
+static void ts_uart_flush_rx(struct ts_uart *up)
+{
+	unsigned int stat, word, n;
+
+	for (n = 0; n < TS_UART_FLUSH_BUDGET; n++) {
+		if (ts_uart_read_stat(up, &stat) || !(stat & TS7800_STAT_DR))
+			break;
+		if (regmap_read(up->map, up->data_reg, &word))
+			break;
+	}
+}
+
+static int ts_uart_startup(struct uart_port *port)
+{
+	struct ts_uart *up = to_ts_uart(port);
+	unsigned long flags;
+	bool rx;
+	int ret;
+
+	uart_port_lock_irqsave(port, &flags);
+	ts_uart_flush_rx(up);
+	uart_port_unlock_irqrestore(port, flags);
+
+	ret = request_irq(port->irq, ts_uart_isr, 0, port->name, up);
+	if (ret)
+		return ret;
+
+	/*
+	 * An event-triggered source may have fired while it was masked; serve
+	 * the port once so that nothing waits for an interrupt that is gone.
+	 */
+	uart_port_lock_irqsave(port, &flags);
+	rx = ts_uart_service(up);
+	uart_port_unlock_irqrestore(port, flags);
+	if (rx)
+		tty_flip_buffer_push(&port->state->port);
+	return 0;
+}
+
+static void ts_uart_shutdown(struct uart_port *port)
+{
+	struct ts_uart *up = to_ts_uart(port);
+	unsigned long flags;
+
+	free_irq(port->irq, up);
+	uart_port_lock_irqsave(port, &flags);
+	up->ctrl &= ~TS7800_STAT_TXBRK;
+	ts_uart_write_ctrl(up);
+	uart_port_unlock_irqrestore(port, flags);
+}
+
+/* Nearest rate of the board-wide divisor table. */
+static unsigned int ts_uart_baud_code(unsigned int baud)
+{
+	unsigned int code, best = 0, best_diff = UINT_MAX, diff;
+
+	for (code = 0; code < TS7800_UART_NR_CODES; code++) {
+		diff = max(baud, ts7800_uart_rates[code].baud) -
+		       min(baud, ts7800_uart_rates[code].baud);
+		if (diff < best_diff) {
+			best_diff = diff;
+			best = code;
+		}
+	}
+	return best;
+}
+
+static void ts_uart_set_status_masks(struct uart_port *port, tcflag_t iflag)
+{
+	port->read_status_mask = TS_UART_ST_DR | TS_UART_ST_OE;
+	if (iflag & INPCK)
+		port->read_status_mask |= TS_UART_ST_PE | TS_UART_ST_FE;
+	if (iflag & (IGNBRK | BRKINT | PARMRK))
+		port->read_status_mask |= TS_UART_ST_BRK;
+
+	port->ignore_status_mask = 0;
+	if (iflag & IGNPAR)
+		port->ignore_status_mask |= TS_UART_ST_PE | TS_UART_ST_FE;
+	if (iflag & IGNBRK) {
+		port->ignore_status_mask |= TS_UART_ST_BRK;
+		/* Ignoring parity and break: ignore overruns too (as 8250). */
+		if (iflag & IGNPAR)
+			port->ignore_status_mask |= TS_UART_ST_OE;
+	}
+}
+
+static void ts_uart_set_termios(struct uart_port *port, struct ktermios *termios,
+				const struct ktermios *old)
+{
+	struct ts_uart *up = to_ts_uart(port);
+	unsigned int baud, code;
+	unsigned long flags;
+
+	/* 9-bit addressing (ADDRB) is not offered; CMSPAR carries the 9th bit. */
+	termios->c_cflag &= ~ADDRB;
+	baud = uart_get_baud_rate(port, termios, old, TS_UART_MIN_BAUD, TS_UART_MAX_BAUD);
+	code = ts_uart_baud_code(baud);
+	baud = ts7800_uart_rates[code].baud;
+
+	uart_port_lock_irqsave(port, &flags);
+	termios->c_cflag = ts_uart_frame_init(&up->frame, termios->c_cflag);
+	uart_update_timeout(port, termios->c_cflag, baud);
+	ts_uart_set_status_masks(port, termios->c_iflag);
+	if (!(termios->c_cflag & CREAD))
+		port->ignore_status_mask |= TS_UART_ST_DR;
+
+	up->ctrl &= ~(TS7800_STAT_BAUD | TS7800_STAT_MODE9 | TS7800_STAT_HWCTS |
+		      TS7800_STAT_DIV8);
+	up->ctrl |= FIELD_PREP(TS7800_STAT_BAUD, code);
+	if (ts_uart_frame_mode9(&up->frame))
+		up->ctrl |= TS7800_STAT_MODE9;
+	if (termios->c_cflag & CRTSCTS) {
+		up->ctrl |= TS7800_STAT_HWCTS;
+		port->status |= UPSTAT_AUTOCTS;
+	} else {
+		port->status &= ~UPSTAT_AUTOCTS;
+	}
+	ts_uart_write_ctrl(up);
+	uart_port_unlock_irqrestore(port, flags);
+
+	if (tty_termios_baud_rate(termios))
+		tty_termios_encode_baud_rate(termios, baud, baud);
+}
+
+/*
+ * No RS-485 direction control is known for the TS-UART (docs/tsuart.md):
+ * the settings are accepted and reported back, the line is not switched.
+ */
+static int ts_uart_rs485_config(struct uart_port *port, struct ktermios *termios,
+				struct serial_rs485 *rs485)
+{
+	return 0;
+}
+
+static const char *ts_uart_type(struct uart_port *port)
+{
+	return port->type == TS_UART_PORT_TYPE ? "TS-UART" : NULL;
+}
+
+static void ts_uart_release_port(struct uart_port *port)
+{
+}
+
+static int ts_uart_request_port(struct uart_port *port)
+{
+	return 0;
+}
+
+static void ts_uart_config_port(struct uart_port *port, int flags)
+{
+	if (flags & UART_CONFIG_TYPE)
+		port->type = TS_UART_PORT_TYPE;
+}
+
+static int ts_uart_verify_port(struct uart_port *port, struct serial_struct *ser)
+{
+	if (ser->type != PORT_UNKNOWN && ser->type != TS_UART_PORT_TYPE)
+		return -EINVAL;
+	return 0;
+}
+
+static const struct uart_ops ts_uart_ops = {
+	.tx_empty	= ts_uart_tx_empty,
+	.set_mctrl	= ts_uart_set_mctrl,
+	.get_mctrl	= ts_uart_get_mctrl,
+	.stop_tx	= ts_uart_stop_tx,
+	.start_tx	= ts_uart_start_tx,
+	.stop_rx	= ts_uart_stop_rx,
+	.break_ctl	= ts_uart_break_ctl,
+	.startup	= ts_uart_startup,
+	.shutdown	= ts_uart_shutdown,
+	.set_termios	= ts_uart_set_termios,
+	.type		= ts_uart_type,
+	.release_port	= ts_uart_release_port,
+	.request_port	= ts_uart_request_port,
+	.config_port	= ts_uart_config_port,
+	.verify_port	= ts_uart_verify_port,
+};
+
+static struct uart_driver ts_uart_driver = {
+	.owner		= THIS_MODULE,
+	.driver_name	= TS_UART_DRV_NAME,
+	.dev_name	= TS_UART_DEV_NAME,
+	.nr		= TS7800_UART_MAX_PORTS,
+};
+
+static int ts_uart_probe(struct platform_device *pdev)
+{
+	struct device *dev = &pdev->dev;
+	struct uart_port *port;
+	struct resource *res;
+	struct ts_uart *up;
+	int irq;
+
+	if (pdev->id < 0 || pdev->id >= TS7800_UART_MAX_PORTS)
+		return dev_err_probe(dev, -EINVAL, "bad port number %d\n", pdev->id);
+
+	up = devm_kzalloc(dev, sizeof(*up), GFP_KERNEL);
+	if (!up)
+		return -ENOMEM;
+
+	up->map = dev_get_regmap(dev->parent, NULL);
+	if (!up->map)
+		return dev_err_probe(dev, -ENODEV, "parent has no regmap\n");
+	res = platform_get_resource(pdev, IORESOURCE_REG, 0);
+	if (!res || resource_size(res) < TS7800_UART_REGS_SIZE)
+		return dev_err_probe(dev, -EINVAL, "no register block\n");
+	irq = platform_get_irq(pdev, 0);
+	if (irq < 0)
+		return irq;
+
+	up->stat_reg = res->start + TS7800_UART_STAT;
+	up->data_reg = res->start + TS7800_UART_DATA;
+	ts_uart_frame_init(&up->frame, CS8);
+
+	port = &up->port;
+	port->dev = dev;
+	port->line = pdev->id;
+	port->irq = irq;
+	/* Register offset in the FPGA window; shown by the core, never mapped. */
+	port->mapbase = res->start;
+	port->iotype = UPIO_MEM16;
+	port->ops = &ts_uart_ops;
+	port->fifosize = TS_UART_FIFO_SIZE;
+	port->flags = UPF_BOOT_AUTOCONF;
+	port->uartclk = TS7800_UART_BITCLK_HZ;
+	port->has_sysrq = IS_ENABLED(CONFIG_SERIAL_CORE_CONSOLE);
+	port->rs485_config = ts_uart_rs485_config;
+	port->rs485_supported.flags = SER_RS485_ENABLED | SER_RS485_RX_DURING_TX;
+
+	platform_set_drvdata(pdev, up);
+	return uart_add_one_port(&ts_uart_driver, port);
+}
+
+static int ts_uart_remove(struct platform_device *pdev)
+{
+	struct ts_uart *up = platform_get_drvdata(pdev);
+
+	uart_remove_one_port(&ts_uart_driver, &up->port);
+	return 0;
+}
+
+static const struct platform_device_id ts_uart_ids[] = {
+	{ .name = TS7800_UART_DEV_NAME },
+	{ }
+};
+MODULE_DEVICE_TABLE(platform, ts_uart_ids);
+
+static struct platform_driver ts_uart_platform_driver = {
+	.probe		= ts_uart_probe,
+	.remove		= ts_uart_remove,
+	.id_table	= ts_uart_ids,
+	.driver		= {
+		.name	= TS_UART_DRV_NAME,
+	},
+};
+
+static int __init ts_uart_init(void)
+{
+	int ret;
+
+	ret = uart_register_driver(&ts_uart_driver);
+	if (ret)
+		return ret;
+	ret = platform_driver_register(&ts_uart_platform_driver);
+	if (ret)
+		uart_unregister_driver(&ts_uart_driver);
+	return ret;
+}
+module_init(ts_uart_init);
+
+static void __exit ts_uart_exit(void)
+{
+	platform_driver_unregister(&ts_uart_platform_driver);
+	uart_unregister_driver(&ts_uart_driver);
+}
+module_exit(ts_uart_exit);
+
+MODULE_DESCRIPTION("TS-7800 FPGA UART (TS-UART) serial driver with 9-bit mode");
+MODULE_LICENSE("GPL");

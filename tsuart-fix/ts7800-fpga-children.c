@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * TS-7800 FPGA: board identification and child devices.
+ *
+ * Shared by the hardware FPGA core and the test-only simulator so that both
+ * present exactly the same children to the same child drivers: one
+ * "ts7800-uart" platform device per TS-UART, with its register block as an
+ * IORESOURCE_REG resource (an offset into the parent's regmap, never MMIO)
+ * and its interrupt mapped through the parent's irq domain.
+ */
+#include <linux/device.h>
+#include <linux/export.h>
+#include <linux/ioport.h>
+#include <linux/irqdomain.h>
+#include <linux/module.h>
+#include <linux/platform_device.h>
+#include <linux/regmap.h>
+#include <linux/ts7800-fpga.h>
+
+/* Divisors as written by the vendor's TS-7800 loader: round(12.5 MHz / baud). */
+const struct ts7800_uart_rate ts7800_uart_rates[TS7800_UART_NR_CODES] = {
+	{ 115200, 108 },
+	{ 57600, 217 },
+	{ 38400, 326 },
+	{ 19200, 651 },
+	{ 9600, 1302 },
+	{ 4800, 2604 },
+	{ 2400, 5208 },
+};
+EXPORT_SYMBOL_GPL(ts7800_uart_rates);
+
+static int ts7800_fpga_read32(struct regmap *map, unsigned int lo, u32 *val)
+{
+	unsigned int l, h;
+	int ret;
+
+	ret = regmap_read(map, lo, &l);
+	if (!ret)
+		ret = regmap_read(map, lo + 2, &h);
+	if (!ret)
+		*val = (h << 16) | (l & 0xffff);
+	return ret;
+}
+
+/**
+ * ts7800_fpga_identify - check the ID magic at offset 0
+ * @map: the FPGA window
+ * @revision: FPGA revision (bits 7..0 of the ID word)
+ *
+ * Return: 0 on a TS-7800 FPGA, -ENODEV on another ID, or a regmap error.
+ */
+int ts7800_fpga_identify(struct regmap *map, u8 *revision)
+{
+	u32 id;
+	int ret;
+
+	ret = ts7800_fpga_read32(map, TS7800_FPGA_ID_LO, &id);
+	if (ret)
+		return ret;
+	if ((id >> 8) != TS7800_FPGA_ID_MAGIC)
+		return -ENODEV;
+	*revision = id & 0xff;
+	return 0;
+}
+EXPORT_SYMBOL_GPL(ts7800_fpga_identify);
+
+/**
+ * ts7800_fpga_write_divisors - load the board-wide TS-UART divisor table
+ * @map: the FPGA window
+ *
+ * The table is shared by all ports, so it belongs to the parent, not to a
+ * UART: children only select a slot through the baud code in STAT.
+ */
+int ts7800_fpga_write_divisors(struct regmap *map)
+{
+	unsigned int code;
+	int ret;
+
+	for (code = 0; code < TS7800_UART_NR_CODES; code++) {
+		ret = regmap_write(map, TS7800_UART_DIVISOR(code),
+				   ts7800_uart_rates[code].divisor);
+		if (ret)
+			return ret;
+	}
+	return 0;
+}
+EXPORT_SYMBOL_GPL(ts7800_fpga_write_divisors);
+
+/*
+ * Ports 8 and 9 use PC/104 pins C14..C19. They exist only while those pins
+ * are in GPIO function; the vendor loader then clears the row's upper bits.
+ */
+static int ts7800_fpga_uart_count(struct device *dev, struct regmap *map)
+{
+	u32 rowc;
+	int ret;
+
+	ret = ts7800_fpga_read32(map, TS7800_FPGA_PC104_ROWC_LO, &rowc);
+	if (ret)
+		return ret;
+	if (rowc & TS7800_FPGA_ROWC_UART89_PINS) {
+		dev_info(dev, "PC/104 row C pins in bus use: TS-UART 8/9 not available\n");
+		return TS7800_UART_ALWAYS_PORTS;
+	}
+	ret = regmap_write(map, TS7800_FPGA_PC104_ROWC_HI, 0);
+	if (!ret)
+		ret = regmap_write(map, TS7800_FPGA_PC104_ROWC_LO,
+				   rowc & TS7800_FPGA_ROWC_KEEP);
+	return ret ? ret : TS7800_UART_MAX_PORTS;
+}
+
+static void ts7800_fpga_dispose_irq(void *data)
+{
+	irq_dispose_mapping((uintptr_t)data);
+}
+
+static void ts7800_fpga_remove_child(void *data)
+{
+	platform_device_unregister(data);
+}
+
+static int ts7800_fpga_add_uart(struct device *parent,
+				struct irq_domain *domain, unsigned int n)
+{
+	struct platform_device_info info = { };
+	struct platform_device *pdev;
+	struct resource res[2];
+	unsigned int virq;
+	int ret;
+
+	virq = irq_create_mapping(domain, TS7800_FPGA_HWIRQ_UART(n));
+	if (!virq)
+		return -EINVAL;
+	ret = devm_add_action_or_reset(parent, ts7800_fpga_dispose_irq,
+				       (void *)(uintptr_t)virq);
+	if (ret)
+		return ret;
+
+	memset(res, 0, sizeof(res));
+	res[0].start = TS7800_UART_BASE(n);
+	res[0].end = TS7800_UART_BASE(n) + TS7800_UART_REGS_SIZE - 1;
+	res[0].flags = IORESOURCE_REG;
+	res[0].name = "ts-uart";
+	res[1].start = virq;
+	res[1].end = virq;
+	res[1].flags = IORESOURCE_IRQ;
+
+	info.parent = parent;
+	info.name = TS7800_UART_DEV_NAME;
+	info.id = n;
+	info.res = res;
+	info.num_res = ARRAY_SIZE(res);
+
+	pdev = platform_device_register_full(&info);
+	if (IS_ERR(pdev))
+		return PTR_ERR(pdev);
+	/* Registered after the mapping, so devres removes the child first. */
+	return devm_add_action_or_reset(parent, ts7800_fpga_remove_child, pdev);
+}
+
+/**
+ * ts7800_fpga_add_uarts - register the TS-UART child devices
+ * @parent: FPGA device; owns the regmap (dev_get_regmap) the children use
+ * @map: the FPGA window
+ * @domain: irq domain whose hwirq k is FPGA interrupt source k
+ *
+ * The children are removed automatically (devres of @parent) before anything
+ * the parent set up earlier is torn down.
+ *
+ * Return: number of ports registered, or a negative error.
+ */
+int ts7800_fpga_add_uarts(struct device *parent, struct regmap *map,
+			  struct irq_domain *domain)
+{
+	int nports, ret;
+	unsigned int n;
+
+	nports = ts7800_fpga_uart_count(parent, map);
+	if (nports < 0)
+		return nports;
+
+	for (n = 0; n < nports; n++) {
+		ret = ts7800_fpga_add_uart(parent, domain, n);
+		if (ret)
+			return dev_err_probe(parent, ret, "TS-UART %u\n", n);
+	}
+	return nports;
+}
+EXPORT_SYMBOL_GPL(ts7800_fpga_add_uarts);
