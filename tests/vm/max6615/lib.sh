@@ -1,0 +1,165 @@
+# SPDX-License-Identifier: GPL-2.0
+# Helpers of the max6615 VM suite (sourced, not a test program): an i2c-stub
+# chip preloaded with the register image of a BR-FAN1 board in the robot's
+# computer box, and access to the hwmon attributes of the bound driver.
+# i2c-stub is plain memory: status bits stay as written, POR resets nothing.
+
+. "$VMTEST_REPO/tests/lib/tap.sh"
+
+# The BR-FAN1 image, "register value" per line. Hand-computed readings:
+#   temp1 = 39 + 5/8 = 39.625 C, temp2 = 45 + 1/8 = 45.125 C
+#   crit 70 / 80 C, offsets +2 / -4 C (17h nibbles 1 and E), fan-start 35 / 40 C
+#   fan1: count 60 -> 58500/60 = 975 RPM, limit 144 -> 406 RPM (406.25)
+#   fan2: count 65 -> 900 RPM, limit FFh -> detection off -> fan2_min 0
+#   pwm1 automatic (FAN_CONFIG bit 5: fan1 follows temp1, bit 7: 10 C hysteresis),
+#   pwm2 manual; target duties 48/240 -> pwm 51; start 48 -> 51, 60 -> 64;
+#   max 240 -> 255, 200 -> 213 (212.5 rounds up); PWM_FREQ 40h -> 33 Hz
+BRFAN1_IMAGE="
+0x00 0x27
+0x01 0x2d
+0x02 0x18
+0x03 0x46
+0x04 0x50
+0x05 0x00
+0x06 0x00
+0x07 0x30
+0x08 0x3c
+0x09 0xf0
+0x0a 0xc8
+0x0b 0x30
+0x0c 0x30
+0x0d 0x30
+0x0e 0x30
+0x0f 0x23
+0x10 0x28
+0x11 0xa0
+0x12 0xb4
+0x13 0x55
+0x14 0x40
+0x17 0x1e
+0x18 0x3c
+0x19 0x41
+0x1a 0x90
+0x1b 0xff
+0x1c 0x00
+0x1e 0xa0
+0x1f 0x20
+0xfd 0x01
+0xfe 0x68
+0xff 0x4d
+"
+
+STUB_BUS=
+CHIP_ADDR=0x18
+# i2c-dev gives i2cset/i2cget their /dev/i2c-N; unloaded again if we loaded it.
+I2C_DEV_LOADED_BY_US=0
+
+# stub_load ADDR: load i2c-stub with one chip at ADDR and find its bus number.
+stub_load() {
+	CHIP_ADDR=$1
+	modprobe i2c-stub chip_addr="$CHIP_ADDR" || return 1
+	STUB_BUS=
+	for a in /sys/bus/i2c/devices/i2c-*; do
+		if grep -q '^SMBus stub driver' "$a/name" 2>/dev/null; then
+			STUB_BUS=${a##*/i2c-}
+		fi
+	done
+	[ -n "$STUB_BUS" ] || return 1
+	if ! grep -q '^i2c_dev ' /proc/modules; then
+		modprobe i2c-dev || return 1
+		I2C_DEV_LOADED_BY_US=1
+	fi
+	# devtmpfs creates the node asynchronously
+	for _i in $(seq 50); do
+		[ -c "/dev/i2c-$STUB_BUS" ] && return 0
+		sleep 0.1
+	done
+	return 1
+}
+
+# image_load [IMAGE]: write a register image ("reg value" lines) into the stub.
+image_load() {
+	echo "${1:-$BRFAN1_IMAGE}" | while read -r reg val; do
+		[ -n "$reg" ] || continue
+		i2cset -y -f "$STUB_BUS" "$CHIP_ADDR" "$reg" "$val" || return 1
+	done
+}
+
+# reg_get REG: the register as the chip holds it, e.g. 0x1e.
+reg_get() { i2cget -y -f "$STUB_BUS" "$CHIP_ADDR" "$1"; }
+# reg_set REG VALUE: change the chip behind the driver (volatile registers only,
+# the driver caches the others).
+reg_set() { i2cset -y -f "$STUB_BUS" "$CHIP_ADDR" "$1" "$2"; }
+
+client_name() { printf '%s-%04x' "$STUB_BUS" "$CHIP_ADDR"; }
+client_dir() { echo "/sys/bus/i2c/devices/$(client_name)"; }
+
+# hwmon_dir: the hwmon directory of the bound chip (empty when unbound).
+hwmon_dir() {
+	for h in "$(client_dir)"/hwmon/hwmon*; do
+		[ -d "$h" ] && echo "$h"
+	done
+}
+
+# driver_bound: the client exists and the max6615 driver is bound to it.
+driver_bound() {
+	[ "$(basename "$(readlink "$(client_dir)/driver" 2>/dev/null)")" = max6615 ]
+}
+
+# attr_write_errno FILE VALUE: write VALUE; print "ok" or the error text
+# (e.g. "Invalid argument").
+attr_write_errno() {
+	_err=$( { printf '%s\n' "$2" >"$1"; } 2>&1 )
+	if [ -z "$_err" ]; then
+		echo ok
+	else
+		echo "${_err##*: }"
+	fi
+}
+
+# dump_regs: registers 00h..1Fh as 32 hex bytes ("27 2d 18 ..."), one read each.
+dump_regs() {
+	i2cdump -y -f -r 0x00-0x1f "$STUB_BUS" "$CHIP_ADDR" b |
+		awk '/^[01]0:/ { for (i = 2; i <= 17; i++) printf "%s ", $i }'
+}
+
+# dump_with REG VALUE DUMP: DUMP with register REG replaced by VALUE (hex).
+dump_with() {
+	echo "$3" | awk -v r=$(($1)) -v v="$(printf '%02x' $(($2)))" \
+		'{ $(r + 1) = v; for (i = 1; i <= NF; i++) printf "%s ", $i }'
+}
+
+# expect_write ATTR VALUE REG NEWVAL: the write succeeds and changes exactly
+# register REG to NEWVAL, nothing else (H = the hwmon directory).
+expect_write() {
+	_before=$(dump_regs)
+	_res=$(attr_write_errno "$H/$1" "$2")
+	_after=$(dump_regs)
+	tap_is "$1 <- $2 sets reg $3 to $4 and nothing else" "$_res $_after" \
+		"ok $(dump_with "$3" "$4" "$_before")"
+}
+
+# expect_reject ATTR VALUE ERRTEXT: the write fails with ERRTEXT and no
+# register changes.
+expect_reject() {
+	_before=$(dump_regs)
+	_res=$(attr_write_errno "$H/$1" "$2")
+	_after=$(dump_regs)
+	tap_is "$1 <- $2 is rejected ($3), registers unchanged" "$_res $_after" \
+		"$3 $_before"
+}
+
+# tap_header / tap_done: TAP with the plan printed last (points counted as run).
+tap_header() { echo "TAP version 13"; }
+tap_done() {
+	echo "1..$TAP_N"
+	[ "$TAP_N" -gt 0 ] && [ "$TAP_FAILED" -eq 0 ]
+}
+
+# Unload what a test loaded; safe when nothing is loaded.
+cleanup_modules() {
+	modprobe -r max6615 2>/dev/null
+	modprobe -r i2c-stub 2>/dev/null
+	[ "$I2C_DEV_LOADED_BY_US" = 1 ] && modprobe -r i2c-dev 2>/dev/null
+	return 0
+}
