@@ -1,0 +1,69 @@
+/* SPDX-License-Identifier: GPL-2.0 WITH Linux-syscall-note */
+/*
+ * ts7800_sim.h - user-space side of the simulated TS-7800 FPGA (test only).
+ *
+ * Every simulated TS-UART n has a "wire", the character device
+ * /dev/ts7800-sim/uartN. A program that opens it is the far end of the line:
+ *
+ *   read()  returns what the UART transmitted, one word per character, each
+ *           becoming readable when its stop bit has left the line;
+ *   write() queues characters for the UART to receive; the simulator clocks
+ *           them in back to back at the UART's configured rate.
+ *
+ * Both directions carry arrays of 16-bit little-endian words (see
+ * TS7800_SIM_WORD_*); byte counts must be even. Reads and writes block unless
+ * O_NONBLOCK is set; poll() reports EPOLLIN when transmitted words wait and
+ * EPOLLOUT when the receive queue has room. There is no flow control on the
+ * wire: words transmitted while the read queue is full are dropped and counted
+ * (to_wire_dropped).
+ */
+#ifndef _UAPI_LINUX_TS7800_SIM_H
+#define _UAPI_LINUX_TS7800_SIM_H
+
+#include <linux/ioctl.h>
+#include <linux/types.h>
+
+/* Wire word layout */
+#define TS7800_SIM_WORD_DATA	0x00ff	/* bits 7..0 of the character */
+#define TS7800_SIM_WORD_BIT9	0x0100	/* 9th bit (meaningful in 9-bit mode) */
+#define TS7800_SIM_WORD_CHAR	0x01ff	/* the whole character */
+/*
+ * A break condition instead of a character. Sent by the UART while it holds
+ * TXBRK (one word per break); written by the far end, the UART receives a
+ * break (STAT RXBRK with a NUL character).
+ */
+#define TS7800_SIM_WORD_BREAK	0x0200
+/*
+ * Written by the far end: the character has a bad stop bit. The TS-UART has
+ * no framing-error status, so the model delivers the character unchanged
+ * (documented choice); the flag is counted in framing_errors.
+ */
+#define TS7800_SIM_WORD_FRAME	0x0400
+#define TS7800_SIM_WORD_FLAGS	0x0600
+
+/* Line timing and counters of one simulated UART (times: CLOCK_MONOTONIC). */
+struct ts7800_sim_wire_stats {
+	__u64 to_wire;			/* characters the UART transmitted */
+	__u64 to_wire_dropped;		/* ...lost because nobody read the wire */
+	__u64 to_wire_first_ns;		/* start bit of the first one */
+	__u64 to_wire_last_ns;		/* end of the stop bit of the last one */
+	__u64 from_wire;		/* characters the UART's receiver completed */
+	__u64 from_wire_first_ns;
+	__u64 from_wire_last_ns;
+	__u64 rx_overruns;		/* completed while the RX FIFO was full */
+	__u64 framing_errors;		/* TS7800_SIM_WORD_FRAME words received */
+	__u64 faults;			/* characters dropped or corrupted by debugfs */
+	__u32 char_ns;			/* current character time, 0 = line off */
+	__u16 ctrl;			/* STAT control bits as last written */
+	__u16 fifo_depth;		/* RX and TX FIFO depth of the model */
+};
+
+#define TS7800_SIM_IOC_MAGIC	0xb4
+/* Read the counters and line state of this wire's UART. */
+#define TS7800_SIM_GET_STATS	_IOR(TS7800_SIM_IOC_MAGIC, 1, struct ts7800_sim_wire_stats)
+/* Zero the counters and times (the next character starts a new measurement). */
+#define TS7800_SIM_RESET_STATS	_IO(TS7800_SIM_IOC_MAGIC, 2)
+/* Drive the UART's CTS input: 0 = deasserted, 1 = asserted (the default). */
+#define TS7800_SIM_SET_CTS	_IOW(TS7800_SIM_IOC_MAGIC, 3, __u32)
+
+#endif /* _UAPI_LINUX_TS7800_SIM_H */

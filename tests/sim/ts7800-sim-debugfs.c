@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Simulated TS-7800 FPGA: fault injection and wiring through debugfs.
+ *
+ * /sys/kernel/debug/ts7800-sim/uartN/
+ *   rx_drop, rx_corrupt   drop / corrupt the next N characters the UART receives
+ *   tx_drop, tx_corrupt   same for the characters it transmits
+ *   rx_corrupt_xor, tx_corrupt_xor   bits flipped by corruption (default 0x001)
+ *   noise                 write N: N random characters arrive on the line
+ *   peer                  cross-connect to port M (both ways), -1 to undo
+ */
+#include <linux/debugfs.h>
+#include <linux/random.h>
+
+#include "ts7800-sim.h"
+
+#define SIM_DEBUGFS_DIR	"ts7800-sim"
+
+/* Every fault counter is read and written under the model lock. */
+#define SIM_U32_ATTR(_name, _field, _max)					\
+static int _name##_get(void *data, u64 *val)					\
+{										\
+	struct sim_uart *u = data;						\
+	unsigned long flags;							\
+										\
+	spin_lock_irqsave(&u->sim->lock, flags);				\
+	*val = u->_field;							\
+	spin_unlock_irqrestore(&u->sim->lock, flags);				\
+	return 0;								\
+}										\
+static int _name##_set(void *data, u64 val)					\
+{										\
+	struct sim_uart *u = data;						\
+	unsigned long flags;							\
+										\
+	if (val > (_max))							\
+		return -EINVAL;							\
+	spin_lock_irqsave(&u->sim->lock, flags);				\
+	u->_field = val;							\
+	spin_unlock_irqrestore(&u->sim->lock, flags);				\
+	return 0;								\
+}										\
+DEFINE_DEBUGFS_ATTRIBUTE(_name##_fops, _name##_get, _name##_set, "%llu\n")
+
+SIM_U32_ATTR(rx_drop, rx_fault.drop, U32_MAX);
+SIM_U32_ATTR(rx_corrupt, rx_fault.corrupt, U32_MAX);
+SIM_U32_ATTR(rx_corrupt_xor, rx_fault.corrupt_xor, TS7800_SIM_WORD_CHAR);
+SIM_U32_ATTR(tx_drop, tx_fault.drop, U32_MAX);
+SIM_U32_ATTR(tx_corrupt, tx_fault.corrupt, U32_MAX);
+SIM_U32_ATTR(tx_corrupt_xor, tx_fault.corrupt_xor, TS7800_SIM_WORD_CHAR);
+
+static int noise_set(void *data, u64 val)
+{
+	struct sim_uart *u = data;
+	unsigned long flags;
+	u16 w;
+
+	if (val > SIM_WIRE_WORDS)
+		return -EINVAL;
+	spin_lock_irqsave(&u->sim->lock, flags);
+	while (val--) {
+		w = get_random_u32() & TS7800_SIM_WORD_CHAR;
+		if (!kfifo_put(&u->line_in, w))
+			break;
+	}
+	sim_uart_rx_kick(u);
+	spin_unlock_irqrestore(&u->sim->lock, flags);
+	return 0;
+}
+DEFINE_DEBUGFS_ATTRIBUTE(noise_fops, NULL, noise_set, "%llu\n");
+
+static int peer_get(void *data, u64 *val)
+{
+	struct sim_uart *u = data;
+
+	*val = (u64)(s64)READ_ONCE(u->peer);
+	return 0;
+}
+
+static int peer_set(void *data, u64 val)
+{
+	struct sim_uart *u = data, *old;
+	struct ts7800_sim *sim = u->sim;
+	s64 peer = (s64)val;
+	unsigned long flags;
+
+	if (peer < -1 || peer >= sim->nports || peer == u->idx)
+		return -EINVAL;
+	spin_lock_irqsave(&sim->lock, flags);
+	if (u->peer >= 0) {
+		old = &sim->uart[u->peer];
+		old->peer = -1;
+	}
+	u->peer = peer;
+	if (peer >= 0) {
+		old = &sim->uart[peer];
+		if (old->peer >= 0)
+			sim->uart[old->peer].peer = -1;
+		old->peer = u->idx;
+	}
+	spin_unlock_irqrestore(&sim->lock, flags);
+	return 0;
+}
+DEFINE_DEBUGFS_ATTRIBUTE(peer_fops, peer_get, peer_set, "%lld\n");
+
+void sim_debugfs_init(struct ts7800_sim *sim)
+{
+	struct dentry *dir;
+	unsigned int n;
+	char name[8];
+
+	sim->debugfs = debugfs_create_dir(SIM_DEBUGFS_DIR, NULL);
+	for (n = 0; n < sim->nports; n++) {
+		struct sim_uart *u = &sim->uart[n];
+
+		snprintf(name, sizeof(name), "uart%u", n);
+		dir = debugfs_create_dir(name, sim->debugfs);
+		debugfs_create_file_unsafe("rx_drop", 0600, dir, u, &rx_drop_fops);
+		debugfs_create_file_unsafe("rx_corrupt", 0600, dir, u, &rx_corrupt_fops);
+		debugfs_create_file_unsafe("rx_corrupt_xor", 0600, dir, u, &rx_corrupt_xor_fops);
+		debugfs_create_file_unsafe("tx_drop", 0600, dir, u, &tx_drop_fops);
+		debugfs_create_file_unsafe("tx_corrupt", 0600, dir, u, &tx_corrupt_fops);
+		debugfs_create_file_unsafe("tx_corrupt_xor", 0600, dir, u, &tx_corrupt_xor_fops);
+		debugfs_create_file_unsafe("noise", 0200, dir, u, &noise_fops);
+		debugfs_create_file_unsafe("peer", 0600, dir, u, &peer_fops);
+	}
+}

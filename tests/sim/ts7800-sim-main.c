@@ -1,0 +1,317 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Simulated TS-7800 FPGA (test only, never loaded on the robot).
+ *
+ * Registers a parent device that looks to the child drivers exactly like the
+ * hardware FPGA core: a 16-bit regmap of the FPGA window and an irq domain
+ * whose hwirq k is FPGA interrupt source k. The children are registered by
+ * the core's own ts7800_fpga_add_uarts(), so the same TS-UART driver binds
+ * to them. Behind the registers sits a model of the TS-UARTs
+ * (ts7800-sim-uart.c), a wire per port (ts7800-sim-wire.c) and debugfs fault
+ * injection (ts7800-sim-debugfs.c).
+ */
+#include <linux/debugfs.h>
+#include <linux/irq.h>
+#include <linux/irqdomain.h>
+#include <linux/module.h>
+#include <linux/platform_device.h>
+#include <linux/regmap.h>
+
+#include "ts7800-sim.h"
+
+#define SIM_DRV_NAME		"ts7800-sim"
+#define SIM_FIFO_DEPTH_MAX	256
+
+unsigned int sim_fifo_depth = 16;
+module_param_named(fifo_depth, sim_fifo_depth, uint, 0444);
+MODULE_PARM_DESC(fifo_depth, "RX and TX FIFO depth of every port, 1..256 (default 16)");
+
+static bool sim_edge_irq;
+module_param_named(edge_irq, sim_edge_irq, bool, 0444);
+MODULE_PARM_DESC(edge_irq, "Sources are events (rising edge) instead of levels (default level)");
+
+bool sim_oerr_clear_on_data;
+module_param_named(oerr_clear_on_data, sim_oerr_clear_on_data, bool, 0444);
+MODULE_PARM_DESC(oerr_clear_on_data, "OERR clears on the next DATA read instead of on STAT read");
+
+static bool sim_rowc_bus;
+module_param_named(pc104_rowc_bus, sim_rowc_bus, bool, 0444);
+MODULE_PARM_DESC(pc104_rowc_bus, "PC/104 pins C14..C19 in bus use: only TS-UART 0..7 exist");
+
+static struct platform_device *sim_pdev;
+
+/*
+ * The interrupt rule of the model, in one place (unknown on the hardware):
+ * a TS-UART source is "high" while its RX FIFO holds a character or its TX
+ * FIFO ran empty since STAT was last read. The FPGA turns the source into a
+ * doorbell cause bit that stays set until acked:
+ *  - level (default): whenever the source is high and enabled in the FPGA
+ *    mask (so also again at unmask time while it is still high);
+ *  - edge (edge_irq=1): only when the source rises while enabled; a rise
+ *    while masked is lost, as an MSI that was never sent.
+ */
+void ts7800_sim_irq_source(struct ts7800_sim *sim, unsigned int hwirq, bool level)
+{
+	u32 bit = BIT(hwirq);
+	unsigned long flags;
+	bool rose;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	rose = level && !(sim->irq_level & bit);
+	if (level)
+		sim->irq_level |= bit;
+	else
+		sim->irq_level &= ~bit;
+	if ((sim->irq_enable & bit) && (sim->edge ? rose : level))
+		sim->irq_cause |= bit;
+	if (sim->irq_cause & sim->irq_enable)
+		irq_work_queue(&sim->irq_work);
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+}
+
+/* Deliver every pending enabled source; runs in hard irq context. */
+static void sim_irq_work(struct irq_work *work)
+{
+	struct ts7800_sim *sim = container_of(work, struct ts7800_sim, irq_work);
+	unsigned long pending, flags;
+	unsigned int bit;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	pending = sim->irq_cause & sim->irq_enable;
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+
+	for_each_set_bit(bit, &pending, TS7800_FPGA_NR_IRQS)
+		generic_handle_domain_irq(sim->domain, bit);
+}
+
+static void sim_irq_ack(struct irq_data *d)
+{
+	struct ts7800_sim *sim = irq_data_get_irq_chip_data(d);
+	unsigned long flags;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	sim->irq_cause &= ~BIT(irqd_to_hwirq(d));
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+}
+
+static void sim_irq_mask(struct irq_data *d)
+{
+	struct ts7800_sim *sim = irq_data_get_irq_chip_data(d);
+	unsigned long flags;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	sim->irq_enable &= ~BIT(irqd_to_hwirq(d));
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+}
+
+static void sim_irq_unmask(struct irq_data *d)
+{
+	struct ts7800_sim *sim = irq_data_get_irq_chip_data(d);
+	u32 bit = BIT(irqd_to_hwirq(d));
+	unsigned long flags;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	sim->irq_enable |= bit;
+	if (!sim->edge && (sim->irq_level & bit))
+		sim->irq_cause |= bit;
+	if (sim->irq_cause & bit)
+		irq_work_queue(&sim->irq_work);
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+}
+
+static struct irq_chip sim_irq_chip = {
+	.name		= SIM_DRV_NAME,
+	.irq_ack	= sim_irq_ack,
+	.irq_mask	= sim_irq_mask,
+	.irq_unmask	= sim_irq_unmask,
+};
+
+static int sim_irq_map(struct irq_domain *d, unsigned int virq, irq_hw_number_t hwirq)
+{
+	struct ts7800_sim *sim = d->host_data;
+
+	irq_set_chip_data(virq, sim);
+	irq_set_chip_and_handler(virq, &sim_irq_chip,
+				 sim->edge ? handle_edge_irq : handle_level_irq);
+	irq_set_noprobe(virq);
+	return 0;
+}
+
+static const struct irq_domain_ops sim_irq_domain_ops = {
+	.map	= sim_irq_map,
+	.xlate	= irq_domain_xlate_onecell,
+};
+
+static void sim_remove_domain(void *data)
+{
+	struct ts7800_sim *sim = data;
+
+	irq_domain_remove(sim->domain);
+	irq_domain_free_fwnode(sim->fwnode);
+}
+
+static int sim_setup_irq(struct ts7800_sim *sim)
+{
+	sim->edge = sim_edge_irq;
+	raw_spin_lock_init(&sim->irq_lock);
+	/* Deliver in hard irq context even on PREEMPT_RT, like a real irq. */
+	sim->irq_work = IRQ_WORK_INIT_HARD(sim_irq_work);
+
+	sim->fwnode = irq_domain_alloc_named_fwnode(SIM_DRV_NAME);
+	if (!sim->fwnode)
+		return -ENOMEM;
+	sim->domain = irq_domain_create_linear(sim->fwnode, TS7800_FPGA_NR_IRQS,
+					       &sim_irq_domain_ops, sim);
+	if (!sim->domain) {
+		irq_domain_free_fwnode(sim->fwnode);
+		return -ENOMEM;
+	}
+	return devm_add_action_or_reset(sim->dev, sim_remove_domain, sim);
+}
+
+static void sim_stop_engines(void *data)
+{
+	struct ts7800_sim *sim = data;
+	unsigned long flags;
+	unsigned int n;
+
+	spin_lock_irqsave(&sim->lock, flags);
+	sim->stopping = true;
+	spin_unlock_irqrestore(&sim->lock, flags);
+	for (n = 0; n < sim->nports; n++)
+		sim_uart_stop(&sim->uart[n]);
+	irq_work_sync(&sim->irq_work);
+}
+
+static void sim_remove_wires(void *data)
+{
+	struct ts7800_sim *sim = data;
+	unsigned int n;
+
+	for (n = 0; n < sim->nports; n++)
+		sim_wire_unregister(&sim->uart[n]);
+}
+
+static void sim_remove_debugfs(void *data)
+{
+	struct ts7800_sim *sim = data;
+
+	debugfs_remove_recursive(sim->debugfs);
+}
+
+static const struct regmap_config sim_regmap_config = {
+	.name		= "fpga",
+	.reg_bits	= 32,
+	.val_bits	= 16,
+	.reg_stride	= 2,
+	.max_register	= TS7800_FPGA_WINDOW_SIZE - 2,
+	.cache_type	= REGCACHE_NONE,
+	.fast_io	= true,		/* used from interrupt handlers */
+	.reg_read	= sim_reg_read,
+	.reg_write	= sim_reg_write,
+};
+
+static int sim_probe(struct platform_device *pdev)
+{
+	struct device *dev = &pdev->dev;
+	struct ts7800_sim *sim;
+	struct regmap *map;
+	unsigned int n;
+	int ret, nports;
+	u8 rev;
+
+	sim = devm_kzalloc(dev, sizeof(*sim), GFP_KERNEL);
+	if (!sim)
+		return -ENOMEM;
+	sim->dev = dev;
+	spin_lock_init(&sim->lock);
+	/* MODEL: after power-up the row C pins are GPIO unless told otherwise. */
+	sim->rowc = sim_rowc_bus ? TS7800_FPGA_ROWC_UART89_PINS : 0;
+	sim->nports = sim_rowc_bus ? TS7800_UART_ALWAYS_PORTS : TS7800_UART_MAX_PORTS;
+
+	ret = sim_setup_irq(sim);
+	if (ret)
+		return ret;
+	for (n = 0; n < sim->nports; n++) {
+		ret = sim_uart_init(sim, &sim->uart[n], n);
+		if (ret)
+			return ret;
+	}
+	ret = devm_add_action_or_reset(dev, sim_stop_engines, sim);
+	if (ret)
+		return ret;
+
+	map = devm_regmap_init(dev, NULL, sim, &sim_regmap_config);
+	if (IS_ERR(map))
+		return PTR_ERR(map);
+
+	for (n = 0; n < sim->nports; n++) {
+		ret = sim_wire_register(&sim->uart[n]);
+		if (ret) {
+			while (n--)
+				sim_wire_unregister(&sim->uart[n]);
+			return ret;
+		}
+	}
+	ret = devm_add_action_or_reset(dev, sim_remove_wires, sim);
+	if (ret)
+		return ret;
+
+	sim_debugfs_init(sim);
+	ret = devm_add_action_or_reset(dev, sim_remove_debugfs, sim);
+	if (ret)
+		return ret;
+
+	/* From here on exactly what the hardware core does. */
+	ret = ts7800_fpga_identify(map, &rev);
+	if (ret)
+		return ret;
+	ret = ts7800_fpga_write_divisors(map);
+	if (ret)
+		return ret;
+	nports = ts7800_fpga_add_uarts(dev, map, sim->domain);
+	if (nports < 0)
+		return nports;
+
+	dev_info(dev, "simulated TS-7800 FPGA rev %u: %d TS-UARTs, FIFO depth %u, %s interrupts\n",
+		 rev, nports, sim_fifo_depth, sim->edge ? "edge" : "level");
+	return 0;
+}
+
+static struct platform_driver sim_driver = {
+	.probe	= sim_probe,
+	.driver	= {
+		.name = SIM_DRV_NAME,
+		/* The wires and debugfs files must not outlive an unbind. */
+		.suppress_bind_attrs = true,
+	},
+};
+
+static int __init sim_init(void)
+{
+	int ret;
+
+	if (!sim_fifo_depth || sim_fifo_depth > SIM_FIFO_DEPTH_MAX)
+		return -EINVAL;
+	ret = platform_driver_register(&sim_driver);
+	if (ret)
+		return ret;
+	sim_pdev = platform_device_register_simple(SIM_DRV_NAME, PLATFORM_DEVID_NONE, NULL, 0);
+	if (IS_ERR(sim_pdev)) {
+		platform_driver_unregister(&sim_driver);
+		return PTR_ERR(sim_pdev);
+	}
+	return 0;
+}
+module_init(sim_init);
+
+static void __exit sim_exit(void)
+{
+	platform_device_unregister(sim_pdev);
+	platform_driver_unregister(&sim_driver);
+}
+module_exit(sim_exit);
+
+MODULE_DESCRIPTION("Simulated TS-7800 FPGA with TS-UARTs (test only)");
+MODULE_LICENSE("GPL");
+MODULE_INFO(test, "Y");

@@ -1,0 +1,451 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Simulated TS-7800 FPGA: TS-UART register and line model.
+ *
+ * Each port has an RX and a TX FIFO of sim_fifo_depth characters and a shift
+ * register per direction. A character occupies the line for
+ * bits x divisor x 80 ns (12.5 MHz bit clock; 10 bits, 11 in MODE9); the
+ * engines are absolute-time hrtimers, so back-to-back characters do not drift
+ * even when a timer fires late (late expiries are caught up in one callback).
+ *
+ * Choices for what the notes leave unknown are collected in
+ * ts7800_sim_irq_source() (ts7800-sim-main.c) and here, marked "MODEL:".
+ */
+#include <linux/bitfield.h>
+#include <linux/ktime.h>
+#include <linux/slab.h>
+
+#include "ts7800-sim.h"
+
+static struct sim_uart *sim_port_of(struct ts7800_sim *sim, unsigned int reg)
+{
+	unsigned int n = (reg - TS7800_UART_BASE(0)) / TS7800_UART_REGS_SIZE;
+
+	return n < sim->nports ? &sim->uart[n] : NULL;
+}
+
+static u16 sim_ring_peek(const struct sim_ring *r)
+{
+	return r->buf[r->head];
+}
+
+static u16 sim_ring_pop(struct sim_ring *r)
+{
+	u16 w = r->buf[r->head];
+
+	r->head = (r->head + 1) % r->depth;
+	r->count--;
+	return w;
+}
+
+static bool sim_ring_push(struct sim_ring *r, u16 w)
+{
+	if (r->count == r->depth)
+		return false;
+	r->buf[(r->head + r->count) % r->depth] = w;
+	r->count++;
+	return true;
+}
+
+/* Character time from the port's baud code, DIV8 and MODE9; 0 = line off. */
+static u64 sim_char_ns(struct sim_uart *u)
+{
+	unsigned int code = FIELD_GET(TS7800_STAT_BAUD, u->ctrl);
+	u64 div = u->sim->divisors[code];
+	u64 bits = (u->ctrl & TS7800_STAT_MODE9) ? 11 : 10;
+
+	/* MODEL: code 7 has no divisor slot on the board; it stops the line. */
+	if (code >= TS7800_UART_NR_CODES || !div)
+		return 0;
+	if (u->ctrl & TS7800_STAT_DIV8)
+		div *= 8;
+	return bits * div * TS7800_UART_BITCLK_NS;
+}
+
+static u16 sim_char_mask(struct sim_uart *u)
+{
+	return (u->ctrl & TS7800_STAT_MODE9) ? TS7800_DATA_MASK9 : TS7800_DATA_MASK8;
+}
+
+static void sim_uart_update_irq(struct sim_uart *u)
+{
+	bool level = u->rx.count || u->tx_event;
+
+	ts7800_sim_irq_source(u->sim, TS7800_FPGA_HWIRQ_UART(u->idx), level);
+}
+
+static bool sim_apply_fault(struct sim_uart *u, struct sim_fault *f, u16 *w)
+{
+	if (f->drop) {
+		f->drop--;
+		u->stats.faults++;
+		return false;
+	}
+	if (f->corrupt) {
+		f->corrupt--;
+		*w ^= f->corrupt_xor;
+		u->stats.faults++;
+	}
+	return true;
+}
+
+/* A character (or break) arrived completely at u's receiver at time t. */
+static void sim_rx_complete(struct sim_uart *u, u16 w, ktime_t t)
+{
+	u16 entry;
+
+	if (!sim_apply_fault(u, &u->rx_fault, &w))
+		return;
+	if (w & TS7800_SIM_WORD_FRAME)
+		u->stats.framing_errors++;
+	entry = (w & TS7800_SIM_WORD_BREAK) ? SIM_RX_BREAK : (w & TS7800_SIM_WORD_CHAR);
+
+	/* MODEL: like a 16550, the character that finds the FIFO full is lost. */
+	if (!sim_ring_push(&u->rx, entry)) {
+		u->oerr = true;
+		u->stats.rx_overruns++;
+		return;
+	}
+	if (!u->stats.from_wire)
+		u->stats.from_wire_first_ns = ktime_to_ns(t) - u->stats.char_ns;
+	u->stats.from_wire++;
+	u->stats.from_wire_last_ns = ktime_to_ns(t);
+	sim_uart_update_irq(u);
+}
+
+/* u's transmitter finished a character (or sends a break) at time t. */
+static void sim_tx_deliver(struct sim_uart *u, u16 w, ktime_t t)
+{
+	struct sim_uart *peer;
+
+	if (!sim_apply_fault(u, &u->tx_fault, &w))
+		return;
+	u->stats.to_wire++;
+	u->stats.to_wire_last_ns = ktime_to_ns(t);
+	if (!kfifo_put(&u->line_out, w))
+		u->stats.to_wire_dropped++;
+	wake_up_interruptible(&u->wait_out);
+
+	/* MODEL: a cross-connected peer gets the character as sent, at any rate. */
+	if (u->peer >= 0) {
+		peer = &u->sim->uart[u->peer];
+		sim_rx_complete(peer, w, t);
+	}
+}
+
+static ktime_t sim_start_time(ktime_t line_free)
+{
+	ktime_t now = ktime_get();
+
+	return ktime_after(line_free, now) ? line_free : now;
+}
+
+void sim_uart_rx_kick(struct sim_uart *u)
+{
+	ktime_t start;
+	u64 ns;
+
+	if (u->rx_busy || u->sim->stopping || kfifo_is_empty(&u->line_in))
+		return;
+	ns = sim_char_ns(u);
+	if (!ns)
+		return;
+	u->stats.char_ns = ns;
+	start = sim_start_time(u->rx_line_free);
+	u->rx_busy = true;
+	hrtimer_start(&u->rx_timer, ktime_add_ns(start, ns), HRTIMER_MODE_ABS_HARD);
+}
+
+static enum hrtimer_restart sim_rx_timer(struct hrtimer *t)
+{
+	struct sim_uart *u = container_of(t, struct sim_uart, rx_timer);
+	enum hrtimer_restart ret = HRTIMER_NORESTART;
+	ktime_t done, now = ktime_get();
+	unsigned long flags;
+	u16 w;
+	u64 ns;
+
+	spin_lock_irqsave(&u->sim->lock, flags);
+	for (;;) {
+		done = hrtimer_get_expires(t);
+		if (kfifo_get(&u->line_in, &w))
+			sim_rx_complete(u, w, done);
+		u->rx_line_free = done;
+		wake_up_interruptible(&u->wait_in);
+
+		ns = sim_char_ns(u);
+		if (!ns || u->sim->stopping || kfifo_is_empty(&u->line_in)) {
+			u->rx_busy = false;
+			break;
+		}
+		u->stats.char_ns = ns;
+		hrtimer_set_expires(t, ktime_add_ns(done, ns));
+		if (ktime_after(hrtimer_get_expires(t), now)) {
+			ret = HRTIMER_RESTART;
+			break;
+		}
+	}
+	spin_unlock_irqrestore(&u->sim->lock, flags);
+	return ret;
+}
+
+static bool sim_tx_may_start(struct sim_uart *u)
+{
+	if (!u->tx.count || u->sim->stopping || (u->ctrl & TS7800_STAT_TXBRK))
+		return false;
+	return !(u->ctrl & TS7800_STAT_HWCTS) || u->cts;
+}
+
+/* Move the next character into the shift register. */
+static void sim_tx_load(struct sim_uart *u)
+{
+	u->tx_shift = sim_ring_pop(&u->tx) & sim_char_mask(u);
+	u->tx_busy = true;
+	/* MODEL: the TX interrupt event is "TX FIFO became empty". */
+	if (!u->tx.count) {
+		u->tx_event = true;
+		sim_uart_update_irq(u);
+	}
+}
+
+void sim_uart_tx_kick(struct sim_uart *u)
+{
+	ktime_t start;
+	u64 ns;
+
+	if (u->tx_busy || !sim_tx_may_start(u))
+		return;
+	ns = sim_char_ns(u);
+	if (!ns)
+		return;
+	start = sim_start_time(u->tx_line_free);
+	if (!u->stats.to_wire)
+		u->stats.to_wire_first_ns = ktime_to_ns(start);
+	u->stats.char_ns = ns;
+	sim_tx_load(u);
+	hrtimer_start(&u->tx_timer, ktime_add_ns(start, ns), HRTIMER_MODE_ABS_HARD);
+}
+
+static enum hrtimer_restart sim_tx_timer(struct hrtimer *t)
+{
+	struct sim_uart *u = container_of(t, struct sim_uart, tx_timer);
+	enum hrtimer_restart ret = HRTIMER_NORESTART;
+	ktime_t done, now = ktime_get();
+	unsigned long flags;
+	u64 ns;
+
+	spin_lock_irqsave(&u->sim->lock, flags);
+	for (;;) {
+		done = hrtimer_get_expires(t);
+		u->tx_busy = false;
+		u->tx_line_free = done;
+		sim_tx_deliver(u, u->tx_shift, done);
+
+		ns = sim_char_ns(u);
+		if (!ns || !sim_tx_may_start(u)) {
+			/* TRE just rose: a tx_empty() poller may be waiting for it. */
+			sim_uart_update_irq(u);
+			break;
+		}
+		u->stats.char_ns = ns;
+		sim_tx_load(u);
+		hrtimer_set_expires(t, ktime_add_ns(done, ns));
+		if (ktime_after(hrtimer_get_expires(t), now)) {
+			ret = HRTIMER_RESTART;
+			break;
+		}
+	}
+	spin_unlock_irqrestore(&u->sim->lock, flags);
+	return ret;
+}
+
+static u16 sim_stat_read(struct sim_uart *u)
+{
+	u16 v = u->ctrl;
+
+	if (u->tx.count < u->tx.depth)
+		v |= TS7800_STAT_TBRE;
+	if (u->rx.count) {
+		v |= TS7800_STAT_DR;
+		/* MODEL: RXBRK describes the character at the head of the FIFO. */
+		if (sim_ring_peek(&u->rx) & SIM_RX_BREAK)
+			v |= TS7800_STAT_RXBRK;
+	}
+	if (u->oerr)
+		v |= TS7800_STAT_OERR;
+	if (u->cts)
+		v |= TS7800_STAT_CTS;
+	if (!u->tx.count && !u->tx_busy)
+		v |= TS7800_STAT_TRE;
+
+	/* MODEL: reading STAT clears OERR (unless oerr_clear_on_data) and the TX event. */
+	if (!sim_oerr_clear_on_data)
+		u->oerr = false;
+	if (u->tx_event) {
+		u->tx_event = false;
+		sim_uart_update_irq(u);
+	}
+	return v;
+}
+
+static u16 sim_data_read(struct sim_uart *u)
+{
+	u16 entry;
+
+	if (!u->rx.count)
+		return 0;
+	entry = sim_ring_pop(&u->rx);
+	if (sim_oerr_clear_on_data)
+		u->oerr = false;
+	sim_uart_update_irq(u);
+	return (entry & SIM_RX_BREAK) ? 0 : entry & sim_char_mask(u);
+}
+
+static void sim_data_write(struct sim_uart *u, u16 val)
+{
+	/* MODEL: a write while the FIFO is full is lost, as on a 16550. */
+	if (!sim_ring_push(&u->tx, val & TS7800_DATA_MASK9))
+		dev_warn_ratelimited(u->sim->dev, "uart%u: DATA written with TX FIFO full\n",
+				     u->idx);
+	if (u->tx_event) {
+		u->tx_event = false;
+		sim_uart_update_irq(u);
+	}
+	sim_uart_tx_kick(u);
+}
+
+static void sim_stat_write(struct sim_uart *u, u16 val)
+{
+	u16 old = u->ctrl;
+
+	u->ctrl = val & TS7800_STAT_CTRL_MASK;
+	if ((u->ctrl & TS7800_STAT_TXBRK) && !(old & TS7800_STAT_TXBRK))
+		sim_tx_deliver(u, TS7800_SIM_WORD_BREAK, ktime_get());
+	sim_uart_tx_kick(u);
+	sim_uart_rx_kick(u);
+}
+
+static u16 sim_half(u32 reg32, unsigned int reg)
+{
+	return (reg & 2) ? reg32 >> 16 : reg32 & 0xffff;
+}
+
+static u32 sim_set_half(u32 reg32, unsigned int reg, u16 val)
+{
+	return (reg & 2) ? (reg32 & 0xffff) | ((u32)val << 16) :
+			   (reg32 & 0xffff0000) | val;
+}
+
+int sim_reg_read(void *context, unsigned int reg, unsigned int *val)
+{
+	struct ts7800_sim *sim = context;
+	struct sim_uart *u;
+	unsigned long flags;
+
+	spin_lock_irqsave(&sim->lock, flags);
+	switch (reg) {
+	case TS7800_FPGA_ID_LO:
+	case TS7800_FPGA_ID_HI:
+		*val = sim_half(TS7800_FPGA_ID_MAGIC << 8 | 0x0b, reg);
+		break;
+	case TS7800_FPGA_PC104_ROWC_LO:
+	case TS7800_FPGA_PC104_ROWC_HI:
+		*val = sim_half(sim->rowc, reg);
+		break;
+	case TS7800_UART_BASE(0) ... TS7800_UART_BASE(TS7800_UART_MAX_PORTS) - 1:
+		u = sim_port_of(sim, reg);
+		if (!u)
+			*val = 0;
+		else if ((reg & 3) == TS7800_UART_STAT)
+			*val = sim_stat_read(u);
+		else
+			*val = sim_data_read(u);
+		break;
+	case TS7800_UART_DIVISOR(0) ... TS7800_UART_DIVISOR(TS7800_UART_NR_CODES):
+		*val = sim->divisors[(reg - TS7800_UART_DIVISOR(0)) / 2];
+		break;
+	case TS7800_FPGA_IRQ_MASK_LO:
+	case TS7800_FPGA_IRQ_MASK_HI:
+		raw_spin_lock(&sim->irq_lock);
+		*val = sim_half(sim->irq_enable, reg);
+		raw_spin_unlock(&sim->irq_lock);
+		break;
+	default:
+		*val = 0;
+		break;
+	}
+	spin_unlock_irqrestore(&sim->lock, flags);
+	return 0;
+}
+
+int sim_reg_write(void *context, unsigned int reg, unsigned int val)
+{
+	struct ts7800_sim *sim = context;
+	struct sim_uart *u;
+	unsigned long flags;
+
+	spin_lock_irqsave(&sim->lock, flags);
+	switch (reg) {
+	case TS7800_FPGA_PC104_ROWC_LO:
+	case TS7800_FPGA_PC104_ROWC_HI:
+		sim->rowc = sim_set_half(sim->rowc, reg, val);
+		break;
+	case TS7800_UART_BASE(0) ... TS7800_UART_BASE(TS7800_UART_MAX_PORTS) - 1:
+		u = sim_port_of(sim, reg);
+		if (u && (reg & 3) == TS7800_UART_STAT)
+			sim_stat_write(u, val);
+		else if (u)
+			sim_data_write(u, val);
+		break;
+	case TS7800_UART_DIVISOR(0) ... TS7800_UART_DIVISOR(TS7800_UART_NR_CODES):
+		sim->divisors[(reg - TS7800_UART_DIVISOR(0)) / 2] = val;
+		break;
+	case TS7800_FPGA_IRQ_MASK_LO:
+	case TS7800_FPGA_IRQ_MASK_HI:
+		raw_spin_lock(&sim->irq_lock);
+		sim->irq_enable = sim_set_half(sim->irq_enable, reg, val);
+		raw_spin_unlock(&sim->irq_lock);
+		break;
+	default:
+		break;	/* MODEL: other registers ignore writes */
+	}
+	spin_unlock_irqrestore(&sim->lock, flags);
+	return 0;
+}
+
+int sim_uart_init(struct ts7800_sim *sim, struct sim_uart *u, unsigned int idx)
+{
+	u->sim = sim;
+	u->idx = idx;
+	u->cts = true;
+	u->peer = -1;
+	u->rx_fault.corrupt_xor = 0x01;
+	u->tx_fault.corrupt_xor = 0x01;
+	/* MODEL: reset value of STAT control bits: 115200 Bd, 8-bit, RTS off. */
+	u->ctrl = 0;
+	INIT_KFIFO(u->line_in);
+	INIT_KFIFO(u->line_out);
+	init_waitqueue_head(&u->wait_in);
+	init_waitqueue_head(&u->wait_out);
+	u->rx.depth = sim_fifo_depth;
+	u->tx.depth = sim_fifo_depth;
+	u->stats.fifo_depth = sim_fifo_depth;
+	u->rx.buf = devm_kcalloc(sim->dev, sim_fifo_depth, sizeof(u16), GFP_KERNEL);
+	u->tx.buf = devm_kcalloc(sim->dev, sim_fifo_depth, sizeof(u16), GFP_KERNEL);
+	if (!u->rx.buf || !u->tx.buf)
+		return -ENOMEM;
+	hrtimer_init(&u->rx_timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_HARD);
+	u->rx_timer.function = sim_rx_timer;
+	hrtimer_init(&u->tx_timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_HARD);
+	u->tx_timer.function = sim_tx_timer;
+	return 0;
+}
+
+/* Caller has set sim->stopping under the lock: no engine restarts. */
+void sim_uart_stop(struct sim_uart *u)
+{
+	hrtimer_cancel(&u->rx_timer);
+	hrtimer_cancel(&u->tx_timer);
+	wake_up_interruptible_all(&u->wait_in);
+	wake_up_interruptible_all(&u->wait_out);
+}
