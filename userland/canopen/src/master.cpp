@@ -49,6 +49,9 @@ void Master::poll() {
   hb_consumer_.poll();
   hb_producer_.poll();
   sync_.poll();
+  // Copy: a service may detach another one from inside poll().
+  auto services = services_;
+  for (TimedService* s : services) s->poll();
 }
 
 std::optional<TimePoint> Master::next_deadline() const {
@@ -60,6 +63,7 @@ std::optional<TimePoint> Master::next_deadline() const {
   take(hb_consumer_.deadline());
   take(hb_producer_.deadline());
   take(sync_.deadline());
+  for (const TimedService* s : services_) take(s->deadline());
   return d;
 }
 

@@ -23,6 +23,15 @@
 
 namespace advee::canopen {
 
+// Something with its own timers that runs on the master's clock (an axis, a
+// drive driver); the owner of the master polls it with the master.
+class TimedService {
+ public:
+  virtual ~TimedService() = default;
+  virtual void poll() = 0;
+  virtual std::optional<TimePoint> deadline() const = 0;
+};
+
 struct MasterConfig {
   std::uint8_t node_id = 0x7F;  // the master's own node-ID (heartbeat producer)
   Duration sdo_timeout = SdoClient::kDefaultTimeout;
@@ -62,6 +71,11 @@ class Master {
   // Any frame not consumed by a protocol object (monitors, tools).
   void set_fallback_listener(FrameListener cb) { fallback_ = std::move(cb); }
 
+  // Services are polled by poll() and counted in next_deadline(); they must
+  // detach before they are destroyed.
+  void attach(TimedService* s) { services_.push_back(s); }
+  void detach(TimedService* s) { std::erase(services_, s); }
+
   void send(const CanFrame& f) { send_(f); }
   const MasterConfig& config() const { return cfg_; }
 
@@ -84,6 +98,7 @@ class Master {
   std::unordered_map<std::uint32_t, std::vector<Subscription>> pdo_listeners_;
   ListenerId next_id_ = 1;
   FrameListener fallback_;
+  std::vector<TimedService*> services_;
 };
 
 }  // namespace advee::canopen

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: GPL-2.0
+// SDO server of the simulated drive (expedited and segmented), with the fault
+// injections the master's tests need: slow responses, forced abort codes,
+// wrong toggle bits, silence.
+#pragma once
+
+#include <deque>
+#include <map>
+#include <optional>
+#include <utility>
+
+#include "advee/canopen/clock.hpp"
+#include "advee/canopen/frame.hpp"
+#include "advee/canopen/sim/object_dictionary.hpp"
+
+namespace advee::canopen::sim {
+
+struct SdoServerFaults {
+  Duration response_delay{};  // slow server
+  bool silent = false;        // never answers
+  bool wrong_upload_toggle = false;  // second upload segment carries the wrong toggle
+  std::map<std::pair<std::uint16_t, std::uint8_t>, SdoAbort> abort_on;  // forced aborts
+};
+
+class SdoServer {
+ public:
+  SdoServer(std::uint8_t node, ObjectDictionary& od, FrameSender send, NowFn now);
+
+  bool handle(const CanFrame& f);
+  void poll();  // sends delayed responses
+  std::optional<TimePoint> deadline() const;
+  SdoServerFaults& faults() { return faults_; }
+  void reset();  // NMT reset communication: drop any transfer in progress
+  std::uint64_t requests() const { return requests_; }
+
+ private:
+  void respond(const std::array<std::uint8_t, 8>& b);
+  void abort(std::uint16_t index, std::uint8_t sub, SdoAbort code);
+  void on_initiate_download(const CanFrame& f);
+  void on_download_segment(const CanFrame& f);
+  void on_initiate_upload(const CanFrame& f);
+  void on_upload_segment(const CanFrame& f);
+
+  std::uint8_t node_;
+  ObjectDictionary& od_;
+  FrameSender send_;
+  NowFn now_;
+  SdoServerFaults faults_;
+  enum class Phase { kIdle, kDownload, kUpload } phase_ = Phase::kIdle;
+  std::uint16_t index_ = 0;
+  std::uint8_t sub_ = 0;
+  bool toggle_ = false;
+  std::vector<std::uint8_t> buffer_;
+  std::size_t offset_ = 0;
+  std::size_t segments_sent_ = 0;
+  std::deque<std::pair<TimePoint, CanFrame>> delayed_;
+  std::uint64_t requests_ = 0;
+};
+
+}  // namespace advee::canopen::sim
