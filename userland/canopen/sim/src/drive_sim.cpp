@@ -167,6 +167,7 @@ void SimulatedDrive::install_validators() {
     return SdoAbort::kNone;
   });
   od_.on_write(0x6060, [this](std::uint8_t) {
+    if (faults_.ignore_mode_change) return;
     if (faults_.refuse_mode_change_while_halt && (od_.get<std::uint16_t>(0x6040) & cw::kHalt)) return;
     od_.set<std::int8_t>(0x6061, 0, od_.get<std::int8_t>(0x6060));
     homing_active_ = false;

@@ -26,6 +26,7 @@ enum class DriveProfile { kEpos, kIcla };
 struct DriveFaults {
   bool heartbeat_silent = false;               // stop producing heartbeat
   bool refuse_mode_change_while_halt = false;  // 0x6061 ignores 0x6060 while halt is set
+  bool ignore_mode_change = false;             // 0x6061 never follows 0x6060
   bool refuse_transition_16 = false;           // quick stop active -> operation enabled refused
   bool homing_switch_missing = false;          // homing runs into an error
 };
