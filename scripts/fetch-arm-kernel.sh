@@ -40,8 +40,30 @@ mkdir -p "$cache/apt-cache/archives/partial"
 host_kbuild=$(dpkg-query -W -f='${Version}' linux-kbuild-6.1 2>/dev/null || true)
 
 stamp="$cache/extracted.stamp"
+link_kbuild() {
+	# The flavour's headers include the -common tree by absolute path and link
+	# scripts/tools to the host's kbuild: re-point both into this tree, with a
+	# modpost built for this target (see cross-modpost.sh).
+	local hdr common scripts l
+	hdr=$(ls -d "$cache"/root/usr/src/linux-headers-*-"$flavour")
+	common=$(ls -d "$cache"/root/usr/src/linux-headers-*-common)
+	printf 'include %s/Makefile\n' "$common" >"$hdr/Makefile"
+	if [ ! -x "$cache/kbuild/scripts/mod/modpost" ]; then
+		"$(dirname "$0")/cross-modpost.sh" "$hdr" "$(case $debarch in armhf) echo arm-linux-gnueabihf- ;; *) echo arm-linux-gnueabi- ;; esac)" \
+			"$cache/kbuild" >/dev/null
+	fi
+	scripts=$cache/kbuild/scripts
+	for l in "$hdr/scripts" "$common/scripts"; do
+		[ "$(readlink "$l" 2>/dev/null)" = "$scripts" ] || { rm -rf "$l"; ln -s "$scripts" "$l"; }
+	done
+	for l in "$hdr/tools" "$common/tools"; do
+		[ -L "$l" ] && [ "$(readlink "$l")" = /usr/lib/linux-kbuild-6.1/tools ] ||
+			{ rm -rf "$l"; ln -s /usr/lib/linux-kbuild-6.1/tools "$l"; }
+	done
+}
 if [ -f "$stamp" ] && [ -d "$cache/root/lib/modules" ]; then
-	cat "$cache/root.path" 2>/dev/null || echo "$cache/root"
+	link_kbuild
+	echo "$cache/root"
 	exit 0
 fi
 
@@ -80,23 +102,7 @@ for deb in "$cache"/debs/*.deb; do
 	dpkg-deb -x "$deb" "$cache/root"
 done
 
-# The flavour's headers include the -common tree by absolute path and link
-# scripts/tools to the host's kbuild: re-point both into this tree.
-hdr="$cache/root/usr/src/linux-headers-$abi-$flavour"
-common="$cache/root/usr/src/linux-headers-$abi-common"
-printf 'include %s/Makefile\n' "$common" > "$hdr/Makefile"
-for l in scripts tools; do
-	rm -f "$hdr/$l"
-	ln -s /usr/lib/linux-kbuild-6.1/$l "$hdr/$l"
-done
-# The -common tree links its scripts/tools the same way (relative links break here).
-for l in scripts tools; do
-	if [ -L "$common/$l" ] || [ ! -e "$common/$l" ]; then
-		rm -f "$common/$l"
-		ln -s /usr/lib/linux-kbuild-6.1/$l "$common/$l"
-	fi
-done
+link_kbuild
 echo "$abi-$flavour" > "$cache/kernelrelease"
-echo "$cache/root" > "$cache/root.path"
 touch "$stamp"
 echo "$cache/root"

@@ -1,0 +1,232 @@
+#!/bin/sh
+# SPDX-License-Identifier: GPL-2.0
+#
+# guest-run.sh JOBFILE: the test runner inside the VM (PID 1), for both lanes.
+# POSIX sh: it runs under the host's /bin/sh on x86_64 and busybox sh on ARM.
+#
+# The job file (written by the host) sets:
+#   VMTEST_LANE            x86_64 | armhf
+#   VMTEST_REPO            the repository path (tests source tap.sh from it)
+#   VMTEST_BUILD           the build directory
+#   VMTEST_RESULTS         writable directory for results
+#   VMTEST_MODULES         file: project modules, one .ko path per line
+#   VMTEST_INSTALL_MODULES 1: overlay VMTEST_MODROOT (extra/*.ko + depmod output,
+#                          staged by the host) on /lib/modules/$(uname -r);
+#                          0: already installed (ARM initramfs)
+#   VMTEST_TESTLIST        file: "suite program path timeout" per line
+#   VMTEST_CONSOLE_RESULTS 1: also print results.tsv to the console (ARM lane)
+#
+# Results: tap.txt (top-level TAP, program output as "# " lines), results.tsv
+# (name, passed, failed, skipped, verdict, reason), logs/<suite>.<prog>.log,
+# dmesg.txt, current (what runs now), done (written last).
+# Every program is checked for exit status, timeout and new kernel warnings.
+
+# shellcheck disable=SC1090
+. "$1" || { echo "guest-run: cannot read job file $1" >/dev/console; echo o >/proc/sysrq-trigger; }
+export VMTEST_REPO VMTEST_BUILD VMTEST_LANE
+export PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin
+export HOME=/root LC_ALL=C
+R=$VMTEST_RESULTS
+mkdir -p "$R/logs" /run/vmtest-scratch
+exec >/dev/console 2>&1
+
+# Kernel messages that fail a run (issue 2 + what lockdep/KASAN/UBSAN/RCU print).
+BAD_KMSG='BUG:|WARNING:|Oops|general protection|RIP:|soft lockup|hard LOCKUP|hung task|blocked for more than|detected stalls|UBSAN:|kernel BUG|Kernel panic|unreferenced object'
+
+tap() { echo "$*" >>"$R/tap.txt"; echo "$*"; }
+n=0
+ok_point() {	# ok_point STATUS NAME [REASON]
+	n=$((n + 1))
+	if [ "$1" = ok ]; then
+		tap "ok $n $2"
+		printf '%s\t1\t0\t0\tok\t\n' "$2" >>"$R/results.tsv"
+	else
+		tap "not ok $n $2${3:+ # $3}"
+		printf '%s\t0\t1\t0\tfail\t%s\n' "$2" "$3" >>"$R/results.tsv"
+	fi
+}
+
+# --- kernel log checks -----------------------------------------------------------
+# dmesg reads the ring buffer synchronously (no reader process to wait for);
+# lines are told apart by their timestamp, which survives a ring buffer wrap.
+kmsg_last=-1
+# Print the new bad kernel lines since the last call (empty: clean). One awk
+# pass: under TCG every extra process costs tens of milliseconds.
+kmsg_new_bad() {
+	out=$(dmesg 2>/dev/null | awk -v last="$kmsg_last" -v re="$BAD_KMSG" '
+		{
+			ts = $0; sub(/^\[ */, "", ts); sub(/\].*/, "", ts); ts += 0
+			if (ts > last || last < 0) { if ($0 ~ re && bad++ < 5) print; newest = ts }
+		}
+		END { print "NEWEST " (newest == "" ? last : newest) }')
+	kmsg_last=${out##*NEWEST }
+	echo "$out" | grep -v '^NEWEST '
+}
+kmsg_new_bad >/dev/null	# boot messages are not any test's fault
+
+# Shorter detectors than the defaults, so that a hang is named inside the
+# per-program timeout instead of after it.
+[ -w /proc/sys/kernel/hung_task_timeout_secs ] && echo 20 >/proc/sys/kernel/hung_task_timeout_secs
+[ -w /proc/sys/kernel/hung_task_warnings ] && echo -1 >/proc/sys/kernel/hung_task_warnings
+echo 1 >/proc/sys/kernel/printk_ratelimit 2>/dev/null
+
+# --- modules -----------------------------------------------------------------
+modnames=
+while read -r ko; do
+	[ -n "$ko" ] || continue
+	m=$(basename "$ko" .ko)
+	modnames="$modnames $m"
+done <"$VMTEST_MODULES"
+
+if [ "$VMTEST_INSTALL_MODULES" = 1 ]; then
+	# The host staged extra/*.ko and the depmod output in VMTEST_MODROOT: put it
+	# over the stock tree (read-only overlay, upper layer first).
+	lower=/lib/modules/$(uname -r)
+	modprobe overlay &&
+		mount -t overlay overlay -o "lowerdir=$VMTEST_MODROOT:$lower" "$lower" ||
+		{ echo "guest-run: cannot install the project's modules"; echo 1 >"$R/install-failed"; }
+fi
+
+ntests=$(grep -c . "$VMTEST_TESTLIST")
+nmods=$(echo $modnames | wc -w)
+tap "TAP version 13"
+tap "1..$((nmods + ntests + 1))"
+tap "# lane $VMTEST_LANE, kernel $(uname -r), $nmods module(s), $ntests program(s)"
+
+# Every module loads and unloads once on its own, before any test uses it.
+for m in $modnames; do
+	echo "module $m" >"$R/current"
+	why=
+	if ! out=$(modprobe "$m" 2>&1); then
+		why="modprobe: $(echo "$out" | tail -1)"
+	elif ! out=$(modprobe -r "$m" 2>&1); then
+		why="modprobe -r: $(echo "$out" | tail -1)"
+	fi
+	bad=$(kmsg_new_bad)
+	[ -n "$bad" ] && why="${why:+$why; }dmesg: $(echo "$bad" | head -1)"
+	if [ -n "$why" ]; then
+		ok_point fail "module $m loads and unloads" "$why"
+	else
+		ok_point ok "module $m loads and unloads"
+	fi
+done
+
+# --- test programs -------------------------------------------------------------
+# run_prog TIMEOUT LOG CMD: run in its own session so that a timeout kills the
+# whole process group; prints "timeout" or the exit status.
+run_prog() {
+	limit=$1 log=$2
+	shift 2
+	marker=/run/vmtest-timeout.$$
+	rm -f "$marker"
+	(cd /run/vmtest-scratch && exec setsid "$@") >"$log" 2>&1 </dev/null &
+	pid=$!
+	(
+		sleep "$limit"
+		if kill -0 "$pid" 2>/dev/null; then
+			: >"$marker"
+			kill -TERM -- "-$pid" 2>/dev/null || kill -TERM "$pid"
+			sleep 3
+			kill -KILL -- "-$pid" 2>/dev/null || kill -KILL "$pid" 2>/dev/null
+		fi
+	) >/dev/null 2>&1 &	# not holding the caller's $(...) pipe open
+	watchdog=$!
+	wait "$pid"
+	rc=$?
+	kill "$watchdog" 2>/dev/null
+	wait "$watchdog" 2>/dev/null
+	if [ -e "$marker" ]; then echo timeout; else echo "$rc"; fi
+	rm -f "$marker"
+}
+
+while read -r suite prog path limit; do
+	[ -n "$suite" ] || continue
+	name="$suite/$prog"
+	log="$R/logs/$suite.$prog.log"
+	echo "$name" >"$R/current"
+	[ "$VMTEST_CONSOLE_RESULTS" = 1 ] && printf 'VMTEST-CURRENT\t%s\n' "$name"
+	rm -rf /run/vmtest-scratch && mkdir -p /run/vmtest-scratch
+	export VMTEST_SCRATCH=/run/vmtest-scratch
+	echo "vmtest: start $name" >/dev/kmsg	# so that dmesg.txt shows who ran when
+	start=$(date +%s)
+	status=$(run_prog "$limit" "$log" "$path")
+	secs=$(($(date +%s) - start))
+	bad=$(kmsg_new_bad)
+	sed 's/^/# /' "$log" >>"$R/tap.txt"
+	# Inner TAP points of the program (top level only; nested ones are indented).
+	pass=$(grep -cE '^ok [0-9]+' "$log" | head -1)
+	skip=$(grep -cE '^ok [0-9]+.*# *(SKIP|skip)' "$log" | head -1)
+	fail=$(grep -cE '^not ok [0-9]+' "$log" | head -1)
+	pass=$((pass - skip))
+	reason=
+	if [ "$status" = timeout ]; then
+		reason="TIMEOUT after $limit s"
+	elif [ "$status" != 0 ] && [ "$status" != 4 ]; then
+		reason="exit status $status"
+	elif [ "$status" = 4 ] && [ $((pass + fail)) -gt 0 ]; then
+		reason="exit status 4 (skip) after running tests"
+	fi
+	[ -n "$bad" ] && reason="${reason:+$reason; }dmesg: $(echo "$bad" | head -1)"
+	if [ -n "$bad" ]; then
+		echo "$bad" | sed "s|^|# dmesg during $name: |" | tee -a "$R/tap.txt"
+	fi
+	if [ -n "$reason" ]; then
+		# A failure that the program's own points do not show counts once more.
+		verdict=fail
+		extra=1
+		[ "$fail" -gt 0 ] && [ -z "$bad" ] && [ "$status" != timeout ] && extra=0
+		fail=$((fail + extra))
+	elif [ "$status" = 4 ]; then
+		verdict=skip
+		[ "$skip" -eq 0 ] && skip=1
+	elif [ $((pass + fail + skip)) -eq 0 ]; then
+		verdict=ok	# a program without TAP points counts once, by its status
+		pass=1
+	else
+		verdict=ok
+	fi
+	[ "$fail" -gt 0 ] && verdict=fail
+	n=$((n + 1))
+	case $verdict in
+	ok) tap "ok $n $name # ${secs}s" ;;
+	skip) tap "ok $n $name # SKIP $(grep -m1 -oE '# *SKIP.*' "$log" | sed 's/^# *SKIP *//')" ;;
+	fail) tap "not ok $n $name # ${reason:-failed test points} (${secs}s)" ;;
+	esac
+	printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$pass" "$fail" "$skip" "$verdict" "$reason" >>"$R/results.tsv"
+done <"$VMTEST_TESTLIST"
+
+# --- end of run: nothing of ours may stay loaded ---------------------------------
+echo "unload" >"$R/current"
+left=
+for m in $modnames; do
+	if grep -q "^$(echo "$m" | tr - _) " /proc/modules; then
+		modprobe -r "$m" 2>/dev/null || left="$left $m"
+	fi
+done
+bad=$(kmsg_new_bad)
+if [ -n "$left" ]; then
+	ok_point fail "project modules unload after the suite" "still loaded:$left"
+elif [ -n "$bad" ]; then
+	ok_point fail "project modules unload after the suite" "dmesg: $(echo "$bad" | head -1)"
+else
+	ok_point ok "project modules unload after the suite"
+fi
+
+dmesg >"$R/dmesg.txt" 2>&1
+if [ "$VMTEST_CONSOLE_RESULTS" = 1 ]; then
+	# No shared file system on this lane: the host reads everything back from
+	# the console, so keep kernel messages from splitting these lines.
+	dmesg -n 1 2>/dev/null
+	sed 's/^/VMTEST-RESULT\t/' "$R/results.tsv"
+	sed 's/^/VMTEST-TAP\t/' "$R/tap.txt"
+	sed 's/^/VMTEST-DMESG\t/' "$R/dmesg.txt"
+	for log in "$R"/logs/*.log; do
+		[ -e "$log" ] && sed "s/^/VMTEST-LOG\t$(basename "$log" .log)\t/" "$log"
+	done
+	printf 'VMTEST-DONE\t%s\n' "$n"
+fi
+echo "$n" >"$R/done"
+sync
+echo "vmtest: done" >/dev/console
+echo o >/proc/sysrq-trigger
+sleep 10

@@ -1,0 +1,102 @@
+# SPDX-License-Identifier: GPL-2.0
+# Host-side helpers shared by the VM lanes (source it after scripts/lib.sh).
+
+# list_tests LANE PROGDIR [FILTER...]: print "suite program path timeout" for
+# every VM test program of the lane. PROGDIR holds the compiled C programs as
+# the guest sees them. Shell programs run only on the x86_64 lanes (the guest
+# has the host's tools there); other lanes run the suites marked portable=1.
+list_tests() {
+	local lane=$1 progdir=$2
+	shift 2
+	local suite_dir suite timeout src prog f
+	for suite_dir in "$TOP"/tests/vm/*/; do
+		suite=$(basename "$suite_dir")
+		[ -f "$suite_dir/settings" ] || { say "tests/vm/$suite has no settings file: skipped"; continue; }
+		case $lane in
+		x86_64*) ;;
+		*) grep -qx 'portable=1' "$suite_dir/settings" || continue ;;
+		esac
+		timeout=$(sed -n 's/^timeout=\([0-9][0-9]*\)$/\1/p' "$suite_dir/settings")
+		timeout=${timeout:-45}
+		{
+			for src in "$suite_dir"*.c; do
+				if [ -e "$src" ]; then
+					echo "$(basename "$src" .c) $progdir/$suite/$(basename "$src" .c)"
+				fi
+			done
+			case $lane in
+			x86_64*)
+				for src in "$suite_dir"*.sh; do
+					if [ -x "$src" ]; then echo "$(basename "$src" .sh) $src"; fi
+				done ;;
+			esac
+		} | sort | while read -r prog f; do
+			if [ $# -gt 0 ]; then
+				local want match=0
+				for want in "$@"; do
+					if [ "$want" = "$suite" ] || [ "$want" = "$suite/$prog" ]; then match=1; fi
+				done
+				[ $match = 1 ] || continue
+			fi
+			echo "$suite $prog $f $timeout"
+		done
+	done
+}
+
+# vm_time_budget TESTLIST MODULELIST BOOT: seconds the whole VM run may take.
+vm_time_budget() {
+	local sum nmods
+	sum=$(awk '{ s += $4 + 5 } END { print s + 0 }' "$1")
+	nmods=$(grep -c . "$2" || true)
+	echo $(($3 + sum + 10 * nmods))
+}
+
+# run_qemu BUDGET CONSOLELOG QEMU-ARGS...: run the VM, console to the log
+# (and to the terminal with VMTEST_VERBOSE=1), killed when over budget.
+run_qemu() {
+	local budget=$1 log=$2 rc=0
+	shift 2
+	if [ "${VMTEST_VERBOSE:-0}" = 1 ]; then
+		timeout -k 10 "$budget" "$@" </dev/null 2>&1 | tee "$log" || rc=$?
+	else
+		timeout -k 10 "$budget" "$@" </dev/null >"$log" 2>&1 || rc=$?
+	fi
+	[ "$rc" = 124 ] && echo "VMTEST-HOST: the VM ran out of its ${budget}s budget and was killed" >>"$log"
+	return 0
+}
+
+# report_lane LANE RESULTS CONSOLELOG SECONDS: print the lane's outcome, copy its
+# rows to $BUILD/results/LANE.tsv and return 1 on any failure.
+report_lane() {
+	local lane=$1 results=$2 console=$3 secs=$4 failed=0
+	mkdir -p "$BUILD/results"
+	local tsv=$BUILD/results/$lane.tsv
+	: >"$tsv"
+	[ -f "$results/results.tsv" ] && sed "s|^|$lane: |" "$results/results.tsv" >>"$tsv"
+
+	if [ -f "$results/tap.txt" ]; then
+		grep -vE '^#' "$results/tap.txt" | sed "s|^|[$lane] |"
+	fi
+	if [ ! -f "$results/done" ]; then
+		local what
+		what=$(cat "$results/current" 2>/dev/null || echo "boot")
+		echo "[$lane] not ok - the VM stopped before the end, while running: $what"
+		echo "[$lane] last lines of the guest console ($console):"
+		grep -vE '^(ok|not ok|#) ' "$console" | tail -n 25 | sed "s|^|[$lane]   |"
+		printf '%s: VM run (stopped during %s)\t0\t1\t0\tfail\tVM hang or crash\n' "$lane" "$what" >>"$tsv"
+		failed=1
+	fi
+	# Show what failed, with the program's own output.
+	local name pass fail skip verdict reason log
+	while IFS=$'\t' read -r name pass fail skip verdict reason; do
+		[ "$verdict" = fail ] || continue
+		failed=1
+		log=$results/logs/$(echo "$name" | tr '/' '.').log
+		echo "[$lane] FAILED: $name${reason:+ ($reason)}"
+		[ -f "$log" ] && tail -n 30 "$log" | sed "s|^|[$lane]   |"
+	done <"${results}/results.tsv" 2>/dev/null || true
+	awk -F'\t' -v lane="$lane" -v secs="$secs" '
+		{ p += $2; f += $3; s += $4 }
+		END { printf "[%s] %d ok, %d not ok, %d skipped, in %ds\n", lane, p, f, s, secs }' "$tsv"
+	return $failed
+}
