@@ -149,6 +149,75 @@ expect_reject() {
 		"$3 $_before"
 }
 
+# --- SMBus transactions through the i2c tracepoints (tracefs) ---------------
+TRACEFS=/sys/kernel/tracing
+TRACEFS_MOUNTED_BY_US=0
+TRACE_ACTIVE=0
+
+# trace_setup: mount tracefs if needed, enable the smbus_read/smbus_write
+# events for the stub chip and the regmap cache-hit event of its regmap.
+trace_setup() {
+	if [ ! -e "$TRACEFS/trace" ]; then
+		mount -t tracefs nodev "$TRACEFS" || return 1
+		TRACEFS_MOUNTED_BY_US=1
+	fi
+	TRACE_ACTIVE=1
+	echo 0 >"$TRACEFS/tracing_on"
+	for ev in smbus/smbus_read smbus/smbus_write; do
+		echo "adapter_nr == $STUB_BUS && addr == $((CHIP_ADDR))" \
+			>"$TRACEFS/events/$ev/filter" || return 1
+		echo 1 >"$TRACEFS/events/$ev/enable" || return 1
+	done
+	echo "name == \"$(client_name)\"" \
+		>"$TRACEFS/events/regmap/regmap_reg_read_cache/filter" || return 1
+	echo 1 >"$TRACEFS/events/regmap/regmap_reg_read_cache/enable" || return 1
+	: >"$TRACEFS/trace"
+}
+
+trace_teardown() {
+	echo 0 >"$TRACEFS/tracing_on" 2>/dev/null
+	for ev in smbus/smbus_read smbus/smbus_write regmap/regmap_reg_read_cache; do
+		echo 0 >"$TRACEFS/events/$ev/enable" 2>/dev/null
+		echo 0 >"$TRACEFS/events/$ev/filter" 2>/dev/null
+	done
+	: >"$TRACEFS/trace" 2>/dev/null
+	[ "$TRACEFS_MOUNTED_BY_US" = 1 ] && umount "$TRACEFS"
+	TRACEFS_MOUNTED_BY_US=0
+	TRACE_ACTIVE=0
+	return 0
+}
+
+# trace_run CMD...: run CMD with tracing on; the events land in TRACE_LOG.
+TRACE_LOG=
+trace_run() {
+	: >"$TRACEFS/trace"
+	echo 1 >"$TRACEFS/tracing_on"
+	"$@"
+	_rc=$?
+	echo 0 >"$TRACEFS/tracing_on"
+	TRACE_LOG=$(grep -v '^#' "$TRACEFS/trace")
+	return $_rc
+}
+
+# trace_count EVENT: events of that name in TRACE_LOG.
+trace_count() { printf '%s\n' "$TRACE_LOG" | grep -c " $1: "; }
+# trace_data_writes: SMBus writes that carry data (the core's address probe
+# is a QUICK command, no register write).
+trace_data_writes() {
+	printf '%s\n' "$TRACE_LOG" | grep ' smbus_write: ' | grep -vc ' QUICK'
+}
+# trace_read_regs: the registers (hex, no 0x) of the SMBus reads in TRACE_LOG.
+trace_read_regs() {
+	printf '%s\n' "$TRACE_LOG" | grep ' smbus_read: ' | sed -n 's/.* c=\([0-9a-f]*\) .*/\1/p'
+}
+
+# The driver's volatile registers (spec): everything else may be cached.
+VOLATILE_REGS="0 1 5 b c d e 16 18 19 1c 1e 1f"
+is_volatile() {
+	for _v in $VOLATILE_REGS; do [ "$_v" = "$1" ] && return 0; done
+	return 1
+}
+
 # tap_header / tap_done: TAP with the plan printed last (points counted as run).
 tap_header() { echo "TAP version 13"; }
 tap_done() {
@@ -161,5 +230,6 @@ cleanup_modules() {
 	modprobe -r max6615 2>/dev/null
 	modprobe -r i2c-stub 2>/dev/null
 	[ "$I2C_DEV_LOADED_BY_US" = 1 ] && modprobe -r i2c-dev 2>/dev/null
+	[ "$TRACE_ACTIVE" = 1 ] && trace_teardown
 	return 0
 }

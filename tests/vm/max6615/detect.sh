@@ -1,0 +1,78 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+# Auto-detection finds the MAX6615 at each of its nine addresses, never binds
+# to a chip whose revision, device or manufacturer ID differs (and says
+# nothing about it), writes nothing to the chip while binding; explicit
+# instantiation through new_device works for max6615 and max6616.
+. "$(dirname "$0")/lib.sh"
+trap cleanup_modules EXIT
+
+tap_header
+
+# kmsg_lines: kernel log lines so far (to see what a step printed)
+kmsg_lines() { dmesg | wc -l; }
+new_kmsg_since() { dmesg | tail -n +"$(($1 + 1))"; }
+
+for addr in 0x18 0x19 0x1a 0x29 0x2a 0x2b 0x4c 0x4d 0x4e; do
+	stub_load "$addr" || { tap_diag "cannot load i2c-stub at $addr"; exit 1; }
+	image_load || { tap_diag "cannot preload the image at $addr"; exit 1; }
+	modprobe max6615 || { tap_diag "cannot load max6615"; exit 1; }
+	tap_ok "detected and bound at $addr" driver_bound
+	cleanup_modules
+done
+
+# An address outside the nine is never probed.
+stub_load 0x2c && image_load
+modprobe max6615
+tap_ok "not instantiated at 0x2c (not a MAX6615 address)" test ! -e "$(client_dir)"
+cleanup_modules
+
+# Each ID register wrong on its own: no device, no message.
+for bad in "0xfd 0x02" "0xfe 0x69" "0xff 0x4e" "0xfe 0x00"; do
+	set -- $bad
+	stub_load 0x18 && image_load && reg_set "$1" "$2"
+	before=$(kmsg_lines)
+	modprobe max6615
+	tap_ok "no device when register $1 reads $2" test ! -e "$(client_dir)"
+	tap_is "detection with register $1 = $2 is silent" "$(new_kmsg_since "$before")" ""
+	cleanup_modules
+done
+
+# Binding reads the IDs first and writes nothing.
+stub_load 0x18 && image_load
+trace_setup || { tap_diag "cannot set up i2c tracing"; exit 1; }
+trace_run modprobe max6615
+tap_ok "bound for the write check" driver_bound
+tap_is "no SMBus data write while detecting and probing" "$(trace_data_writes)" 0
+first3=$(trace_read_regs | head -3 | tr '\n' ' ')
+tap_is "the first reads are the ID registers" "$first3" "ff fe fd "
+trace_teardown
+cleanup_modules
+
+# Explicit instantiation. Detection runs first while the stub is blank (no
+# IDs, nothing binds), then the image goes in and user space declares the chip.
+stub_load 0x18
+modprobe max6615
+tap_ok "a blank chip is not detected" test ! -e "$(client_dir)"
+image_load
+NEW=/sys/bus/i2c/devices/i2c-$STUB_BUS/new_device
+DEL=/sys/bus/i2c/devices/i2c-$STUB_BUS/delete_device
+for chip in max6615 max6616; do
+	echo "$chip 0x18" >"$NEW"
+	tap_ok "new_device $chip 0x18 binds" driver_bound
+	H=$(hwmon_dir)
+	tap_is "$chip: hwmon name" "$(cat "$H/name" 2>&1)" "$chip"
+	tap_is "$chip: temp1_input" "$(cat "$H/temp1_input" 2>&1)" 39625
+	echo 0x18 >"$DEL"
+	tap_ok "delete_device removes $chip" test ! -e "$(client_dir)"
+done
+# Declared by hand but the IDs do not match: probe refuses, says why.
+reg_set 0xfe 0x42
+before=$(kmsg_lines)
+echo "max6615 0x18" >"$NEW"
+tap_ok "new_device on a wrong ID does not bind" test ! -e "$(client_dir)/driver"
+tap_ok "the probe failure is logged" sh -c "dmesg | tail -n +$((before + 1)) | grep -q 'no MAX6615/MAX6616'"
+echo 0x18 >"$DEL"
+cleanup_modules
+
+tap_done
