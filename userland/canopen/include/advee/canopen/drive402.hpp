@@ -81,6 +81,7 @@ class Drive402 final : public TimedService {
   // Last value of a mapped feedback object (from the status TPDO).
   std::optional<std::int64_t> feedback(std::uint16_t index, std::uint8_t sub = 0) const;
   Axis402& axis() { return axis_; }
+  SdoClient& sdo() { return master_.sdo(cfg_.node); }
   const DriveConfig& config() const { return cfg_; }
   const PdoMapping& control_mapping() const { return control_map_; }
   const PdoMapping& status_mapping() const { return status_map_; }

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: GPL-2.0
+#include "advee/canopen/can_port.hpp"
+
+#include <sys/epoll.h>
+
+namespace advee::canopen {
+
+namespace {
+constexpr auto kFirstBackoff = std::chrono::milliseconds(1);
+constexpr auto kMaxBackoff = std::chrono::milliseconds(32);
+constexpr std::size_t kMaxReadsPerWakeup = 256;  // let timers run under a flood
+}  // namespace
+
+CanPort::CanPort(EventLoop& loop, CanSocket socket, FrameHandler on_frame, ErrorHandler on_error)
+    : loop_(loop), socket_(std::move(socket)), on_frame_(std::move(on_frame)), on_error_(std::move(on_error)) {
+  loop_.add_fd(socket_.fd(), EPOLLIN, [this](std::uint32_t) { on_readable(); });
+  loop_.add_timer_source([this] { return retry_at_; },
+                         [this] {
+                           if (retry_at_ && SteadyClock::now() >= *retry_at_) {
+                             retry_at_.reset();
+                             flush();
+                           }
+                         });
+}
+
+CanPort::~CanPort() { loop_.remove_fd(socket_.fd()); }
+
+void CanPort::send(const CanFrame& f) {
+  txq_.push_back(f);
+  if (!retry_at_) flush();
+}
+
+void CanPort::flush() {
+  if (state_ == CanControllerState::kBusOff) return;
+  while (!txq_.empty()) {
+    switch (socket_.send(txq_.front())) {
+      case CanSocket::SendStatus::kSent:
+        ++stats_.tx_frames;
+        txq_.pop_front();
+        backoff_ = {};
+        break;
+      case CanSocket::SendStatus::kRetryLater:
+        ++stats_.tx_retries;
+        backoff_ = backoff_.count() ? std::min<Duration>(backoff_ * 2, kMaxBackoff) : Duration(kFirstBackoff);
+        retry_at_ = SteadyClock::now() + backoff_;
+        return;
+      case CanSocket::SendStatus::kFailed:
+        // Interface down or similar: the frame is lost; report and go on.
+        ++stats_.tx_failed;
+        txq_.pop_front();
+        break;
+    }
+  }
+}
+
+void CanPort::on_readable() {
+  for (std::size_t i = 0; i < kMaxReadsPerWakeup; ++i) {
+    auto r = socket_.receive();
+    if (!r) break;
+    if (auto* f = std::get_if<CanFrame>(&*r)) {
+      ++stats_.rx_frames;
+      if (state_ == CanControllerState::kBusOff) {
+        state_ = CanControllerState::kErrorActive;  // traffic again: the controller is back
+        flush();
+      }
+      on_frame_(*f);
+    } else {
+      ++stats_.error_frames;
+      const CanErrorInfo& e = std::get<CanSocket::Error>(*r).info;
+      if (e.state) {
+        const bool was_off = state_ == CanControllerState::kBusOff;
+        state_ = *e.state;
+        if (was_off && state_ != CanControllerState::kBusOff) flush();
+      }
+      if (on_error_) on_error_(e);
+    }
+  }
+  stats_.rx_dropped = socket_.dropped();
+}
+
+}  // namespace advee::canopen
