@@ -16,6 +16,7 @@ Master::Master(MasterConfig cfg, FrameSender send, NowFn now)
 }
 
 void Master::handle(const CanFrame& f) {
+  if (observer_) observer_(f);
   if (f.id >= cob::kSdoTx + 1 && f.id <= cob::kSdoTx + 127) {
     auto it = sdo_.find(static_cast<std::uint8_t>(f.id - cob::kSdoTx));
     if (it != sdo_.end() && it->second->handle(f)) return;

@@ -180,6 +180,15 @@ TEST_F(EngineTest, PdoListenersGetTheirCobIdOnly) {
   EXPECT_EQ(other, 1);
 }
 
+TEST_F(EngineTest, ObserverSeesFramesTheProtocolObjectsConsume) {
+  std::vector<std::string> observed;
+  master.set_observer([&](const CanFrame& f) { observed.push_back(to_string(f)); });
+  from_node(heartbeat_frame(5, NmtState::kOperational));
+  from_node(make_frame(0x085, {0x00, 0x00, 0x00}));
+  EXPECT_EQ(observed, (std::vector<std::string>{"705#05", "085#000000"}));
+  EXPECT_EQ(hb.size(), 1u) << "and the heartbeat consumer still got its frame";
+}
+
 TEST_F(EngineTest, SdoResponsesAreRoutedPerNode) {
   std::vector<int> done;
   master.sdo(2).upload(0x1000, 0, [&](const SdoResult&) { done.push_back(2); });

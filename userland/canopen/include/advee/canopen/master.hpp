@@ -70,6 +70,8 @@ class Master {
   void unsubscribe(ListenerId id);
   // Any frame not consumed by a protocol object (monitors, tools).
   void set_fallback_listener(FrameListener cb) { fallback_ = std::move(cb); }
+  // Sees every received frame before any protocol object does (monitors).
+  void set_observer(FrameListener cb) { observer_ = std::move(cb); }
 
   // Services are polled by poll() and counted in next_deadline(); they must
   // detach before they are destroyed.
@@ -98,6 +100,7 @@ class Master {
   std::unordered_map<std::uint32_t, std::vector<Subscription>> pdo_listeners_;
   ListenerId next_id_ = 1;
   FrameListener fallback_;
+  FrameListener observer_;
   std::vector<TimedService*> services_;
 };
 

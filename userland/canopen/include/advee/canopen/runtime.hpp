@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: GPL-2.0
+// Production wiring: the passive Master fed by a CanPort on an EventLoop,
+// with the loop's timerfd armed at the master's next deadline; plus a
+// signalfd helper for daemons. Everything here is owned RAII.
+#pragma once
+
+#include <csignal>
+#include <functional>
+#include <initializer_list>
+#include <memory>
+#include <string>
+
+#include "advee/canopen/can_port.hpp"
+#include "advee/canopen/event_loop.hpp"
+#include "advee/canopen/master.hpp"
+
+namespace advee::canopen {
+
+class MasterRuntime {
+ public:
+  MasterRuntime(EventLoop& loop, const std::string& ifname, MasterConfig cfg);
+  Master& master() { return master_; }
+  CanPort& port() { return *port_; }
+  EventLoop& loop() { return loop_; }
+
+ private:
+  EventLoop& loop_;
+  std::unique_ptr<CanPort> port_;
+  Master master_;
+};
+
+// Blocks the given signals for the process and delivers them through the
+// loop; restores nothing on destruction because daemons exit afterwards, but
+// closes the descriptor.
+class SignalHandler {
+ public:
+  SignalHandler(EventLoop& loop, std::initializer_list<int> signals, std::function<void(int)> on_signal);
+  ~SignalHandler();
+  SignalHandler(const SignalHandler&) = delete;
+  SignalHandler& operator=(const SignalHandler&) = delete;
+
+ private:
+  EventLoop& loop_;
+  UniqueFd fd_;
+  std::function<void(int)> on_signal_;
+};
+
+}  // namespace advee::canopen

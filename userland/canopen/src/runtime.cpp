@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-2.0
+#include "advee/canopen/runtime.hpp"
+
+#include <sys/epoll.h>
+#include <sys/signalfd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <system_error>
+
+namespace advee::canopen {
+
+MasterRuntime::MasterRuntime(EventLoop& loop, const std::string& ifname, MasterConfig cfg)
+    : loop_(loop),
+      port_(std::make_unique<CanPort>(
+          loop, CanSocket::open(ifname), [this](const CanFrame& f) { master_.handle(f); },
+          [](const CanErrorInfo& e) {
+            if (e.state) std::fprintf(stderr, "canopen: controller %s\n", std::string(to_string(*e.state)).c_str());
+          })),
+      master_(cfg, port_->sender(), system_monotonic_clock()) {
+  loop_.add_timer_source([this] { return master_.next_deadline(); }, [this] { master_.poll(); });
+}
+
+SignalHandler::SignalHandler(EventLoop& loop, std::initializer_list<int> signals, std::function<void(int)> on_signal)
+    : loop_(loop), on_signal_(std::move(on_signal)) {
+  sigset_t set;
+  sigemptyset(&set);
+  for (int s : signals) sigaddset(&set, s);
+  if (::sigprocmask(SIG_BLOCK, &set, nullptr) < 0) throw std::system_error(errno, std::generic_category(), "sigprocmask");
+  fd_.reset(::signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC));
+  if (!fd_) throw std::system_error(errno, std::generic_category(), "signalfd");
+  loop_.add_fd(fd_.get(), EPOLLIN, [this](std::uint32_t) {
+    signalfd_siginfo si;
+    while (::read(fd_.get(), &si, sizeof si) == static_cast<ssize_t>(sizeof si)) on_signal_(static_cast<int>(si.ssi_signo));
+  });
+}
+
+SignalHandler::~SignalHandler() { loop_.remove_fd(fd_.get()); }
+
+}  // namespace advee::canopen
