@@ -111,12 +111,6 @@ static const unsigned int max6615_pwm_freq_low_hz[] = { 20, 33, 50, 100 };
 #define MAX6615_CONFIG_TEMP2_LOCAL	BIT(1)
 /* CONFIG bit 0: fan spin-up disabled (TH); documented, not used */
 #define MAX6615_CONFIG_SPINUP_DISABLE	BIT(0)
-/*
- * The datasheet does not say whether reading TEMPn latches TEMPn_EXT, so
- * a temperature is read MSB, EXT, MSB and the EXT re-read when a
- * conversion finished in between (?).
- */
-#define MAX6615_TEMP_READ_RETRIES	1
 
 /* hwmon_temp_type values (Documentation/ABI/testing/sysfs-class-hwmon) */
 #define MAX6615_TEMP_TYPE_DIODE		3	/* the die sensor is a diode (DS) */
@@ -266,26 +260,30 @@ static long max6615_tach_to_rpm(unsigned int count)
 	return DIV_ROUND_CLOSEST(MAX6615_TACH_RPM_FACTOR, max(count, 1U));
 }
 
-/* Caller holds data->lock. */
+/*
+ * Caller holds data->lock. The datasheet does not say whether reading TEMPn
+ * latches TEMPn_EXT (?): when a conversion ends between the two reads, the
+ * MSB changes and the EXT read is repeated to match the new MSB.
+ */
 static int max6615_read_temp(struct max6615_data *data, int channel, long *val)
 {
-	unsigned int msb, ext, msb_again;
-	int retries = MAX6615_TEMP_READ_RETRIES;
+	unsigned int msb, msb_again, ext;
 	int ret;
 
 	ret = regmap_read(data->regmap, MAX6615_REG_TEMP(channel), &msb);
 	if (ret)
 		return ret;
-	for (;;) {
+	ret = regmap_read(data->regmap, MAX6615_REG_TEMP_EXT(channel), &ext);
+	if (ret)
+		return ret;
+	ret = regmap_read(data->regmap, MAX6615_REG_TEMP(channel), &msb_again);
+	if (ret)
+		return ret;
+	if (msb_again != msb) {
+		msb = msb_again;
 		ret = regmap_read(data->regmap, MAX6615_REG_TEMP_EXT(channel), &ext);
 		if (ret)
 			return ret;
-		ret = regmap_read(data->regmap, MAX6615_REG_TEMP(channel), &msb_again);
-		if (ret)
-			return ret;
-		if (msb_again == msb || retries-- == 0)
-			break;
-		msb = msb_again;
 	}
 
 	*val = (msb * 8 + FIELD_GET(MAX6615_TEMP_EXT_MASK, ext)) *
@@ -531,20 +529,19 @@ static int max6615_read_pwm_freq(struct max6615_data *data, long *val)
 /* The frequency register is shared: pwm1_freq and pwm2_freq are one value. */
 static int max6615_write_pwm_freq(struct max6615_data *data, long val)
 {
-	unsigned int mask = MAX6615_PWM_FREQ_FAST | MAX6615_PWM_FREQ_LOW_MASK;
-	unsigned int highest_low = max6615_pwm_freq_low_hz[ARRAY_SIZE(max6615_pwm_freq_low_hz) - 1];
-	unsigned int regval;
+	long low_max = max6615_pwm_freq_low_hz[ARRAY_SIZE(max6615_pwm_freq_low_hz) - 1];
+	unsigned int code;
 
-	/* Closest setting; the midpoint between 100 Hz and 35 kHz splits them. */
-	if (val >= (highest_low + MAX6615_PWM_FREQ_FAST_HZ) / 2)
+	/* The closest setting: 35 kHz from the midpoint to the fastest low one. */
+	if (val >= (low_max + MAX6615_PWM_FREQ_FAST_HZ) / 2)
 		return regmap_update_bits(data->regmap, MAX6615_REG_PWM_FREQ,
 					  MAX6615_PWM_FREQ_FAST,
 					  MAX6615_PWM_FREQ_FAST);
-	val = clamp_val(val, 0, highest_low);
-	regval = find_closest(val, max6615_pwm_freq_low_hz,
-			      ARRAY_SIZE(max6615_pwm_freq_low_hz));
-	return regmap_update_bits(data->regmap, MAX6615_REG_PWM_FREQ, mask,
-				  FIELD_PREP(MAX6615_PWM_FREQ_LOW_MASK, regval));
+	code = find_closest(clamp_val(val, 0, low_max), max6615_pwm_freq_low_hz,
+			    ARRAY_SIZE(max6615_pwm_freq_low_hz));
+	return regmap_update_bits(data->regmap, MAX6615_REG_PWM_FREQ,
+				  MAX6615_PWM_FREQ_FAST | MAX6615_PWM_FREQ_LOW_MASK,
+				  FIELD_PREP(MAX6615_PWM_FREQ_LOW_MASK, code));
 }
 
 static int max6615_read_pwm_attr(struct max6615_data *data, u32 attr,
@@ -622,7 +619,7 @@ static int max6615_write_auto_channels(struct max6615_data *data, int channel,
 	unsigned int channels;
 	int ret;
 
-	if (val < 1 || val > GENMASK(MAX6615_CHANNELS - 1, 0))
+	if (val < 1 || val > (1 << MAX6615_CHANNELS) - 1)
 		return -EINVAL;
 	ret = max6615_read_fan_mode(data, channel, &channels);
 	if (ret)
@@ -832,7 +829,9 @@ static ssize_t auto_point_pwm_store(struct device *dev,
 	mutex_lock(&data->lock);
 	ret = max6615_write_duty(data, reg, val);
 	mutex_unlock(&data->lock);
-	return ret ? ret : count;
+	if (ret)
+		return ret;
+	return count;
 }
 
 static ssize_t auto_point_temp_show(struct device *dev,
@@ -866,7 +865,9 @@ static ssize_t auto_point_temp_store(struct device *dev,
 	mutex_lock(&data->lock);
 	ret = max6615_write_degrees(data, reg, val);
 	mutex_unlock(&data->lock);
-	return ret ? ret : count;
+	if (ret)
+		return ret;
+	return count;
 }
 
 static SENSOR_DEVICE_ATTR_RW(pwm1_auto_point1_pwm, auto_point_pwm,
@@ -904,7 +905,8 @@ static int max6615_identify(struct i2c_client *client)
 		{ MAX6615_REG_DEVICE_ID, MAX6615_DEVICE_ID },
 		{ MAX6615_REG_REVISION, MAX6615_REVISION },
 	};
-	int i, ret;
+	unsigned int i;
+	int ret;
 
 	for (i = 0; i < ARRAY_SIZE(ids); i++) {
 		ret = i2c_smbus_read_byte_data(client, ids[i].reg);

@@ -84,4 +84,14 @@ attr pwm1 128
 reg_set 0x0b 0xf5
 attr pwm1 255
 
+
+# CONFIG bit 1: channel 2 measures the die (a diode) instead of thermistor 2.
+# CONFIG is cached: change it while unbound, the rebind starts a new cache.
+echo "$(client_name)" >/sys/bus/i2c/drivers/max6615/unbind
+reg_set 0x02 0x1a
+echo "$(client_name)" >/sys/bus/i2c/drivers/max6615/bind
+H=$(hwmon_dir)
+attr temp2_type 3
+attr temp1_type 4
+
 tap_done

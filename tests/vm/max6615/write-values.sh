@@ -122,7 +122,7 @@ attr pwm2_freq 35000
 expect_write pwm1_freq 40 0x14 0x4b
 attr pwm1_freq 33
 expect_write pwm1_freq 25000 0x14 0x6b
-expect_write pwm1_freq 0 0x14 0x0b
+expect_write pwm1_freq -5 0x14 0x0b
 
 # input that is not a number
 expect_reject temp1_crit abc "Invalid argument"
