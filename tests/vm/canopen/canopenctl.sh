@@ -1,0 +1,50 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+# canopenctl against a simulated EPOS on vcan: typed SDO (expedited and
+# segmented), abort codes, SDO timeout with the abort on the bus, PDO dump,
+# NMT, CiA 402 status and power control, monitor.
+. "$(dirname "$0")/common.inc"
+canopen_setup
+tap_plan 16
+
+start_sim epos -n 3 -p epos || exit 1
+start_sim slow -n 4 -p icla --sdo-delay-ms 800 || exit 1
+ctl() { "$BIN/canopenctl" -i "$IF" "$@"; }
+
+tap_is "expedited read of the device type" "$(ctl read 3 1000 u32)" "131474 (0x20192)"
+tap_is "segmented read of the device name" "$(ctl read 3 1008 str)" "EPOS 70/10 (simulated)"
+ctl write 3 6081 u32 1234
+tap_is "write then read back profile velocity" "$(ctl read 3 6081 u32)" "1234 (0x4D2)"
+out=$(ctl read 3 2222 2>&1); rc=$?
+tap_is "missing object: exit 1 with the abort text" "$rc:$out" \
+	"1:canopenctl: read: object does not exist in the object dictionary (0x06020000)"
+out=$(ctl write 3 6041 u16 1 2>&1); rc=$?
+tap_is "read-only object refuses a write" "$rc:$out" \
+	"1:canopenctl: write: attempt to write a read-only object (0x06010002)"
+
+start_candump
+out=$(ctl -t 200 read 4 1000 2>&1); rc=$?
+stop_candump
+tap_is "slow server: local timeout" "$rc:$out" "1:canopenctl: read: SDO protocol timed out (0x05040000)"
+tap_ok "the timeout sent abort 0x05040000 to the server" grep -qx "604#8000100000000405" "$SCR/frames"
+
+ctl pdo 3 >"$SCR/pdo" 2>&1
+tap_ok "PDO dump shows RPDO4 = controlword + target velocity" \
+	grep -qx "RPDO4 0x503 type 255: 6040:00/16 60FF:00/32" "$SCR/pdo"
+tap_ok "PDO dump shows TxPDO4 disabled by default" \
+	grep -qx "TPDO4 0x483 (disabled) type 255: 6041:00/16 606C:00/32" "$SCR/pdo"
+
+ctl nmt start 3
+tap_ok "NMT start reaches the drive" wait_for "$SCR/epos.log" "node 3 nmt operational" 5
+tap_is "status of a fresh drive" "$(ctl status 3)" "statusword 0x0240: switch on disabled, mode 0"
+tap_is "enable walks to operation enabled" "$(ctl enable 3)" "operation enabled"
+tap_is "quick stop" "$(ctl quick-stop 3)" "quick stop active"
+tap_is "disable from quick stop" "$(ctl disable 3)" "switch on disabled"
+
+ctl write 3 1017 u16 50
+tap_ok "monitor decodes the drive's heartbeat" \
+	bash -c "'$BIN/canopenctl' -i '$IF' monitor 4 | grep -q 'heartbeat node 3 operational'"
+ctl nmt reset-node all
+tap_ok "reset node: boot-up seen by the drive log" wait_for "$SCR/epos.log" "node 3 nmt pre-operational" 5
+
+tap_finish
