@@ -43,14 +43,14 @@ endif
 all: modules userland testprogs
 
 help:
-	@sed -n '3,22p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,19p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@$(TOP)/scripts/deps.sh
 
 # Kernel modules ------------------------------------------------------------
 modules:
-	@$(TOP)/scripts/build-kmod.sh x86_64 "$(KDIR)"
+	@$(TOP)/scripts/build-kmod.sh $(if $(filter /usr/src/linux-headers-$(KVER),$(KDIR)),x86_64,custom) "$(KDIR)"
 
 # ARCH=arm is also in the environment of the sub-makes; the scripts set what
 # each target needs explicitly.

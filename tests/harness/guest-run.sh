@@ -15,6 +15,8 @@
 #                          0: already installed (ARM initramfs)
 #   VMTEST_TESTLIST        file: "suite program path timeout" per line
 #   VMTEST_CONSOLE_RESULTS 1: also print results.tsv to the console (ARM lane)
+#   VMTEST_SHELL           1: after installing the modules, an interactive shell
+#                          on the console instead of the tests
 #
 # Results: tap.txt (top-level TAP, program output as "# " lines), results.tsv
 # (name, passed, failed, skipped, verdict, reason), logs/<suite>.<prog>.log,
@@ -23,7 +25,7 @@
 
 # shellcheck disable=SC1090
 . "$1" || { echo "guest-run: cannot read job file $1" >/dev/console; echo o >/proc/sysrq-trigger; }
-export VMTEST_REPO VMTEST_BUILD VMTEST_LANE
+export VMTEST_REPO VMTEST_BUILD VMTEST_LANE VMTEST_MODULES
 export PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin
 export HOME=/root LC_ALL=C
 R=$VMTEST_RESULTS
@@ -85,6 +87,14 @@ if [ "$VMTEST_INSTALL_MODULES" = 1 ]; then
 	modprobe overlay &&
 		mount -t overlay overlay -o "lowerdir=$VMTEST_MODROOT:$lower" "$lower" ||
 		{ echo "guest-run: cannot install the project's modules"; echo 1 >"$R/install-failed"; }
+fi
+
+if [ "${VMTEST_SHELL:-0}" = 1 ]; then
+	echo "vmtest: interactive guest shell; the project's modules are installed (modprobe NAME)."
+	echo "vmtest: /run/vmtest is the host's $VMTEST_HOST_RESULTS; 'exit' powers off."
+	cd / && setsid -c /bin/bash -i </dev/console >/dev/console 2>&1
+	echo o >/proc/sysrq-trigger
+	sleep 10
 fi
 
 ntests=$(grep -c . "$VMTEST_TESTLIST")

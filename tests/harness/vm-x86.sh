@@ -16,6 +16,8 @@
 #   --kernel   kernel image (default: /boot/vmlinuz-RELEASE)
 #   --modules  file listing the .ko files to install (default: build/kmod/x86_64/modules.list)
 #   --lane     name of the lane in results (default x86_64)
+#   --run PROG run this one program (path on the host) instead of the suites,
+#              and print its output (used by make demo)
 # Environment: VMTEST_VERBOSE=1 streams the guest console; VMTEST_SMP, VMTEST_MEM.
 # Exit status: 0 when every test passed (or was skipped with a reason), 1 otherwise.
 set -euo pipefail
@@ -23,7 +25,7 @@ TOP=$(cd "$(dirname "$0")/../.." && pwd)
 . "$TOP/scripts/lib.sh"
 . "$TOP/tests/harness/lib-host.sh"
 
-tests=() shell=0 kver= kernel= modules= lane=x86_64
+tests=() shell=0 kver= kernel= modules= lane=x86_64 run=
 while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=("$2"); shift 2 ;;
@@ -32,7 +34,8 @@ while [ $# -gt 0 ]; do
 	--kernel) kernel=$2; shift 2 ;;
 	--modules) modules=$2; shift 2 ;;
 	--lane) lane=$2; shift 2 ;;
-	-h|--help) sed -n '3,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	--run) run=$(readlink -f "$2"); shift 2 ;;
+	-h|--help) sed -n '3,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-x86.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
@@ -81,7 +84,11 @@ results=$vmdir/results
 rm -rf "$results"
 mkdir -p "$results"
 cp "$modules" "$results/modules.list"
-list_tests x86_64 "$BUILD/tests/x86_64" "${tests[@]}" >"$results/tests.list"
+if [ -n "$run" ]; then
+	echo "main $(basename "$run" .sh) $run 300" >"$results/tests.list"
+else
+	list_tests x86_64 "$BUILD/tests/x86_64" "${tests[@]}" >"$results/tests.list"
+fi
 if [ "${#tests[@]}" -gt 0 ] && [ ! -s "$results/tests.list" ]; then
 	die "no VM test matches: ${tests[*]} (suites: $(ls "$TOP/tests/vm" | tr '\n' ' '))"
 fi
@@ -95,6 +102,8 @@ VMTEST_INSTALL_MODULES=1
 VMTEST_MODROOT=$modroot/lib/modules/$kver
 VMTEST_TESTLIST=/run/vmtest/tests.list
 VMTEST_CONSOLE_RESULTS=0
+VMTEST_SHELL=$shell
+VMTEST_HOST_RESULTS=$results
 EOF
 
 qemu=(qemu-system-x86_64 -machine pc -accel tcg -cpu "${VMTEST_CPU:-max}" -smp "${VMTEST_SMP:-2}" -m "${VMTEST_MEM:-2048}"
@@ -106,11 +115,14 @@ append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.runner=
 
 if [ "$shell" = 1 ]; then
 	say "interactive guest shell; leave with 'exit' (or Ctrl-a x)"
-	exec "${qemu[@]}" -append "$append vmtest.shell=1"
+	exec "${qemu[@]}" -append "$append"
 fi
 
 budget=$(vm_time_budget "$results/tests.list" "$results/modules.list" 60)
 say "booting $kver under QEMU TCG: $(grep -c . "$results/tests.list") program(s), time budget ${budget}s"
 start=$(date +%s)
 run_qemu "$budget" "$vmdir/console.log" "${qemu[@]}" -append "$append"
+if [ -n "$run" ]; then
+	cat "$results"/logs/main.*.log 2>/dev/null
+fi
 report_lane "$lane" "$results" "$vmdir/console.log" $(($(date +%s) - start))

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# deps.sh: install what this machine lacks to build and test the project
+# (Debian 12). Idempotent: installs only missing packages, runs apt-get update
+# only when something is missing, then fetches the ARM kernels into .cache/.
+# Packages are listed in scripts/packages.txt (one per line, # comments).
+set -euo pipefail
+. "$(dirname "$0")/lib.sh"
+
+mapfile -t pkgs < <(sed 's/#.*//; /^[[:space:]]*$/d; s/[[:space:]]//g' "$TOP/scripts/packages.txt")
+missing=()
+for p in "${pkgs[@]}"; do
+	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+
+if [ "${#missing[@]}" -gt 0 ]; then
+	[ "$(id -u)" = 0 ] || die "missing packages (${missing[*]}): run as root or install them"
+	say "installing ${#missing[@]} package(s): ${missing[*]}"
+	export DEBIAN_FRONTEND=noninteractive
+	# A stale index is the usual reason for a failed install: update once.
+	apt-get update -q >/dev/null || say "apt-get update reported errors; trying the install anyway"
+	apt-get install -y -q --no-install-recommends "${missing[@]}" >"${TMPDIR:-/tmp}/advee-apt.log" 2>&1 || {
+		tail -20 "${TMPDIR:-/tmp}/advee-apt.log" >&2
+		die "apt-get install failed (log: ${TMPDIR:-/tmp}/advee-apt.log)"
+	}
+else
+	say "all ${#pkgs[@]} Debian packages present"
+fi
+
+# The x86_64 VM lane boots the newest installed 6.1 amd64 kernel that has headers.
+kver=$("$TOP/scripts/kver.sh")
+[ "$kver" != none ] || die "no amd64 6.1 kernel with headers after install"
+
+# ARM kernels for cross builds and the ARM VM lane (cached in .cache/arm).
+arm_tree armhf armmp >/dev/null
+arm_tree armel marvell >/dev/null
+# checkpatch and modpost sources from linux-source-6.1 (cached in .cache/linux-source).
+"$TOP/scripts/kernel-source.sh" >/dev/null
+say "dependencies ready (x86_64 kernel $kver)"

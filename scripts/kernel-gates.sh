@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# kernel-gates.sh: the kernel quality gates of the project, on every kernel
+# source file (kernel/ tsuart-fix/ rs485proto/ i2c-max6615/ tests/kmod/ and
+# the other Kbuild dirs in KSRC_DIRS):
+#   1. W=1 builds without warnings for x86_64, armhf (armmp), armel (marvell);
+#   2. checkpatch.pl --strict (from Debian's linux-source-6.1, extracted at
+#      build time) reports no error, warning or check;
+#   3. sparse (make C=2) reports nothing.
+# Each gate is one row of build/results/gates.tsv; exit 1 if any fails.
+set -uo pipefail
+. "$(dirname "$0")/lib.sh"
+
+mkdir -p "$BUILD/results"
+rows=$BUILD/results/gates.tsv
+: >"$rows"
+failed=0
+row() {	# row NAME ok|fail REASON
+	if [ "$2" = ok ]; then
+		printf 'gates: %s\t1\t0\t0\tok\t\n' "$1" >>"$rows"
+		echo "ok - $1"
+	else
+		printf 'gates: %s\t0\t1\t0\tfail\t%s\n' "$1" "$3" >>"$rows"
+		echo "not ok - $1: $3"
+		failed=1
+	fi
+}
+
+# 1. W=1 (build-kmod.sh fails on any compiler warning)
+for t in x86_64 armhf armel; do
+	if out=$("$TOP/scripts/build-kmod.sh" "$t" 2>&1); then
+		row "W=1 build, $t" ok
+	else
+		echo "$out" | tail -20
+		row "W=1 build, $t" fail "compiler warnings or errors (build/kmod/$t/build.log)"
+	fi
+done
+
+# 2. checkpatch --strict
+src=$("$TOP/scripts/kernel-source.sh")
+checkpatch=$src/scripts/checkpatch.pl
+mapfile -t files < <(cd "$TOP" && git ls-files -co --exclude-standard -- $KSRC_DIRS | grep -E '\.[ch]$' | sort)
+log=$BUILD/results/checkpatch.log
+: >"$log"
+cp_bad=0
+for f in "${files[@]}"; do
+	out=$(cd "$TOP" && perl "$checkpatch" --strict --quiet --no-tree --no-summary --show-types -f "$f" 2>&1)
+	if [ -n "$out" ]; then
+		printf '%s\n' "$out" >>"$log"
+		cp_bad=$((cp_bad + 1))
+	fi
+done
+if [ "$cp_bad" = 0 ]; then
+	row "checkpatch --strict (${#files[@]} files)" ok
+else
+	grep -E '^(ERROR|WARNING|CHECK):|^#[0-9]+: FILE:' "$log" | head -30
+	row "checkpatch --strict (${#files[@]} files)" fail "$cp_bad file(s) with findings ($log)"
+fi
+
+# 3. sparse (C=2 checks every file, compiled or not)
+kdir=$(cat "$BUILD/kmod/x86_64/kdir" 2>/dev/null)
+slog=$BUILD/results/sparse.log
+if [ -n "$kdir" ] && make -C "$kdir" M="$BUILD/kmod/x86_64" C=2 modules >"$slog" 2>&1; then
+	if grep -E '(warning|error):' "$slog" | grep -v 'Skipping BTF'; then
+		row "sparse (C=2)" fail "sparse findings ($slog)"
+	else
+		row "sparse (C=2)" ok
+	fi
+else
+	tail -20 "$slog"
+	row "sparse (C=2)" fail "sparse run failed ($slog)"
+fi
+exit $failed
