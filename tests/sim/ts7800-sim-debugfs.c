@@ -8,6 +8,8 @@
  *   rx_corrupt_xor, tx_corrupt_xor   bits flipped by corruption (default 0x001)
  *   noise                 write N: N random characters arrive on the line
  *   peer                  cross-connect to port M (both ways), -1 to undo
+ * /sys/kernel/debug/ts7800-sim/irq_hold
+ *                         1: deliver no interrupt (a late CPU), 0: deliver again
  */
 #include <linux/debugfs.h>
 #include <linux/random.h>
@@ -103,6 +105,23 @@ static int peer_set(void *data, u64 val)
 }
 DEFINE_DEBUGFS_ATTRIBUTE(peer_fops, peer_get, peer_set, "%lld\n");
 
+static int irq_hold_get(void *data, u64 *val)
+{
+	struct ts7800_sim *sim = data;
+
+	*val = READ_ONCE(sim->irq_hold);
+	return 0;
+}
+
+static int irq_hold_set(void *data, u64 val)
+{
+	if (val > 1)
+		return -EINVAL;
+	ts7800_sim_irq_set_hold(data, val);
+	return 0;
+}
+DEFINE_DEBUGFS_ATTRIBUTE(irq_hold_fops, irq_hold_get, irq_hold_set, "%llu\n");
+
 void sim_debugfs_init(struct ts7800_sim *sim)
 {
 	struct dentry *dir;
@@ -110,6 +129,7 @@ void sim_debugfs_init(struct ts7800_sim *sim)
 	char name[8];
 
 	sim->debugfs = debugfs_create_dir(SIM_DEBUGFS_DIR, NULL);
+	debugfs_create_file_unsafe("irq_hold", 0600, sim->debugfs, sim, &irq_hold_fops);
 	for (n = 0; n < sim->nports; n++) {
 		struct sim_uart *u = &sim->uart[n];
 

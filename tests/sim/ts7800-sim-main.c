@@ -64,7 +64,22 @@ void ts7800_sim_irq_source(struct ts7800_sim *sim, unsigned int hwirq, bool leve
 		sim->irq_level &= ~bit;
 	if ((sim->irq_enable & bit) && (sim->edge ? rose : level))
 		sim->irq_cause |= bit;
-	if (sim->irq_cause & sim->irq_enable)
+	if ((sim->irq_cause & sim->irq_enable) && !sim->irq_hold)
+		irq_work_queue(&sim->irq_work);
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+}
+
+/*
+ * Fault injection: while held, latched interrupts are not delivered, as if
+ * the CPU were busy elsewhere; the UARTs keep running (and overrun).
+ */
+void ts7800_sim_irq_set_hold(struct ts7800_sim *sim, bool hold)
+{
+	unsigned long flags;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	sim->irq_hold = hold;
+	if (!hold && (sim->irq_cause & sim->irq_enable))
 		irq_work_queue(&sim->irq_work);
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 }
@@ -77,7 +92,7 @@ static void sim_irq_work(struct irq_work *work)
 	unsigned int bit;
 
 	raw_spin_lock_irqsave(&sim->irq_lock, flags);
-	pending = sim->irq_cause & sim->irq_enable;
+	pending = sim->irq_hold ? 0 : sim->irq_cause & sim->irq_enable;
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 
 	for_each_set_bit(bit, &pending, TS7800_FPGA_NR_IRQS)
@@ -114,7 +129,7 @@ static void sim_irq_unmask(struct irq_data *d)
 	sim->irq_enable |= bit;
 	if (!sim->edge && (sim->irq_level & bit))
 		sim->irq_cause |= bit;
-	if (sim->irq_cause & bit)
+	if ((sim->irq_cause & bit) && !sim->irq_hold)
 		irq_work_queue(&sim->irq_work);
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 }

@@ -6,7 +6,10 @@
  * register per direction. A character occupies the line for
  * bits x divisor x 80 ns (12.5 MHz bit clock; 10 bits, 11 in MODE9); the
  * engines are absolute-time hrtimers, so back-to-back characters do not drift
- * even when a timer fires late (late expiries are caught up in one callback).
+ * when a timer fires a little late. A timer that fires more than a character
+ * time late means the simulator itself was not running (a stalled virtual
+ * CPU); the line then pauses for that time (counted as stall) rather than
+ * delivering a burst that no real line could carry.
  *
  * Choices for what the notes leave unknown are collected in
  * ts7800_sim_irq_source() (ts7800-sim-main.c) and here, marked "MODEL:".
@@ -124,7 +127,8 @@ static void sim_tx_deliver(struct sim_uart *u, u16 w, ktime_t t)
 	u->stats.to_wire_last_ns = ktime_to_ns(t);
 	if (!kfifo_put(&u->line_out, w))
 		u->stats.to_wire_dropped++;
-	wake_up_interruptible(&u->wait_out);
+	if (kfifo_len(&u->line_out) >= SIM_WIRE_WAKE_WORDS)
+		wake_up_interruptible(&u->wait_out);
 
 	/* MODEL: a cross-connected peer gets the character as sent, at any rate. */
 	if (u->peer >= 0) {
@@ -156,34 +160,44 @@ void sim_uart_rx_kick(struct sim_uart *u)
 	hrtimer_start(&u->rx_timer, ktime_add_ns(start, ns), HRTIMER_MODE_ABS_HARD);
 }
 
+/*
+ * Slot of the next character after one that completed at @done: back to
+ * back, unless the simulator ran more than a character late (see top).
+ */
+static ktime_t sim_next_slot(ktime_t done, ktime_t now, u64 ns, __u64 *stall_ns)
+{
+	ktime_t next = ktime_add_ns(done, ns);
+
+	if (ktime_after(next, now))
+		return next;
+	*stall_ns += ktime_to_ns(ktime_sub(now, done));
+	return ktime_add_ns(now, ns);
+}
+
 static enum hrtimer_restart sim_rx_timer(struct hrtimer *t)
 {
 	struct sim_uart *u = container_of(t, struct sim_uart, rx_timer);
 	enum hrtimer_restart ret = HRTIMER_NORESTART;
-	ktime_t done, now = ktime_get();
+	ktime_t done = hrtimer_get_expires(t);
 	unsigned long flags;
 	u16 w;
 	u64 ns;
 
 	spin_lock_irqsave(&u->sim->lock, flags);
-	for (;;) {
-		done = hrtimer_get_expires(t);
-		if (kfifo_get(&u->line_in, &w))
-			sim_rx_complete(u, w, done);
-		u->rx_line_free = done;
+	if (kfifo_get(&u->line_in, &w))
+		sim_rx_complete(u, w, done);
+	u->rx_line_free = done;
+	if (kfifo_avail(&u->line_in) >= SIM_WIRE_WAKE_ROOM || kfifo_is_empty(&u->line_in))
 		wake_up_interruptible(&u->wait_in);
 
-		ns = sim_char_ns(u);
-		if (!ns || u->sim->stopping || kfifo_is_empty(&u->line_in)) {
-			u->rx_busy = false;
-			break;
-		}
+	ns = sim_char_ns(u);
+	if (!ns || u->sim->stopping || kfifo_is_empty(&u->line_in)) {
+		u->rx_busy = false;
+	} else {
 		u->stats.char_ns = ns;
-		hrtimer_set_expires(t, ktime_add_ns(done, ns));
-		if (ktime_after(hrtimer_get_expires(t), now)) {
-			ret = HRTIMER_RESTART;
-			break;
-		}
+		hrtimer_set_expires(t, sim_next_slot(done, ktime_get(), ns,
+						     &u->stats.from_wire_stall_ns));
+		ret = HRTIMER_RESTART;
 	}
 	spin_unlock_irqrestore(&u->sim->lock, flags);
 	return ret;
@@ -201,8 +215,12 @@ static void sim_tx_load(struct sim_uart *u)
 {
 	u->tx_shift = sim_ring_pop(&u->tx) & sim_char_mask(u);
 	u->tx_busy = true;
-	/* MODEL: the TX interrupt event is "TX FIFO became empty". */
-	if (!u->tx.count) {
+	/*
+	 * MODEL: the TX interrupt event is "TX FIFO at or below half full" after
+	 * a character left it (for depth 1: empty), cleared by a STAT read or a
+	 * DATA write. The driver must also cope with "empty" only.
+	 */
+	if (u->tx.count <= u->tx.depth / 2) {
 		u->tx_event = true;
 		sim_uart_update_irq(u);
 	}
@@ -230,30 +248,25 @@ static enum hrtimer_restart sim_tx_timer(struct hrtimer *t)
 {
 	struct sim_uart *u = container_of(t, struct sim_uart, tx_timer);
 	enum hrtimer_restart ret = HRTIMER_NORESTART;
-	ktime_t done, now = ktime_get();
+	ktime_t done = hrtimer_get_expires(t);
 	unsigned long flags;
 	u64 ns;
 
 	spin_lock_irqsave(&u->sim->lock, flags);
-	for (;;) {
-		done = hrtimer_get_expires(t);
-		u->tx_busy = false;
-		u->tx_line_free = done;
-		sim_tx_deliver(u, u->tx_shift, done);
+	u->tx_busy = false;
+	u->tx_line_free = done;
+	sim_tx_deliver(u, u->tx_shift, done);
 
-		ns = sim_char_ns(u);
-		if (!ns || !sim_tx_may_start(u)) {
-			/* TRE just rose: a tx_empty() poller may be waiting for it. */
-			sim_uart_update_irq(u);
-			break;
-		}
+	ns = sim_char_ns(u);
+	if (!ns || !sim_tx_may_start(u)) {
+		/* The line went idle: the far end sees everything now. */
+		wake_up_interruptible(&u->wait_out);
+	} else {
 		u->stats.char_ns = ns;
 		sim_tx_load(u);
-		hrtimer_set_expires(t, ktime_add_ns(done, ns));
-		if (ktime_after(hrtimer_get_expires(t), now)) {
-			ret = HRTIMER_RESTART;
-			break;
-		}
+		hrtimer_set_expires(t, sim_next_slot(done, ktime_get(), ns,
+						     &u->stats.to_wire_stall_ns));
+		ret = HRTIMER_RESTART;
 	}
 	spin_unlock_irqrestore(&u->sim->lock, flags);
 	return ret;
@@ -319,8 +332,10 @@ static void sim_stat_write(struct sim_uart *u, u16 val)
 	u16 old = u->ctrl;
 
 	u->ctrl = val & TS7800_STAT_CTRL_MASK;
-	if ((u->ctrl & TS7800_STAT_TXBRK) && !(old & TS7800_STAT_TXBRK))
+	if ((u->ctrl & TS7800_STAT_TXBRK) && !(old & TS7800_STAT_TXBRK)) {
 		sim_tx_deliver(u, TS7800_SIM_WORD_BREAK, ktime_get());
+		wake_up_interruptible(&u->wait_out);
+	}
 	sim_uart_tx_kick(u);
 	sim_uart_rx_kick(u);
 }

@@ -23,6 +23,13 @@
 
 /* Words queued on each direction of a wire. */
 #define SIM_WIRE_WORDS		4096
+/*
+ * Wire readers are woken once this many words wait or when the transmitter
+ * goes idle, writers once a quarter of the queue is free: waking a process
+ * per character would cost more than the line itself under emulation.
+ */
+#define SIM_WIRE_WAKE_WORDS	64
+#define SIM_WIRE_WAKE_ROOM	(SIM_WIRE_WORDS / 4)
 /* RX FIFO entry flag (model internal): the entry is a received break. */
 #define SIM_RX_BREAK		BIT(15)
 
@@ -92,6 +99,7 @@ struct ts7800_sim {
 	u32 irq_level;		/* current level of each source */
 	u32 irq_cause;		/* latched, cleared by ack (the doorbell cause) */
 	bool edge;		/* trigger rule, see ts7800_sim_irq_source() */
+	bool irq_hold;		/* debugfs: the CPU "does not respond" */
 	struct irq_work irq_work;
 	struct irq_domain *domain;
 	struct fwnode_handle *fwnode;
@@ -105,6 +113,7 @@ extern bool sim_oerr_clear_on_data;
 
 /* ts7800-sim-main.c */
 void ts7800_sim_irq_source(struct ts7800_sim *sim, unsigned int hwirq, bool level);
+void ts7800_sim_irq_set_hold(struct ts7800_sim *sim, bool hold);
 
 /* ts7800-sim-uart.c */
 int sim_uart_init(struct ts7800_sim *sim, struct sim_uart *u, unsigned int idx);

@@ -13,9 +13,14 @@
  * Both directions carry arrays of 16-bit little-endian words (see
  * TS7800_SIM_WORD_*); byte counts must be even. Reads and writes block unless
  * O_NONBLOCK is set; poll() reports EPOLLIN when transmitted words wait and
- * EPOLLOUT when the receive queue has room. There is no flow control on the
- * wire: words transmitted while the read queue is full are dropped and counted
- * (to_wire_dropped).
+ * EPOLLOUT when the receive queue has room. Each direction queues 4096 words.
+ *
+ * Wake-ups are batched to keep the simulation cheap: a blocked reader (or
+ * poller) is woken when 64 words wait or when the UART's transmitter goes
+ * idle (the end of every burst or frame), a blocked writer when a quarter of
+ * the queue is free. A non-blocking read always returns what is there.
+ * There is no flow control on the wire: words transmitted while the read
+ * queue is full are dropped and counted (to_wire_dropped).
  */
 #ifndef _UAPI_LINUX_TS7800_SIM_H
 #define _UAPI_LINUX_TS7800_SIM_H
@@ -53,6 +58,14 @@ struct ts7800_sim_wire_stats {
 	__u64 rx_overruns;		/* completed while the RX FIFO was full */
 	__u64 framing_errors;		/* TS7800_SIM_WORD_FRAME words received */
 	__u64 faults;			/* characters dropped or corrupted by debugfs */
+	/*
+	 * Time the line stood still because the simulator itself ran late (its
+	 * timer fired more than a character time late, e.g. a stalled virtual
+	 * CPU): the model then pauses the line instead of delivering a burst of
+	 * characters, so such a stall never causes an overrun.
+	 */
+	__u64 to_wire_stall_ns;
+	__u64 from_wire_stall_ns;
 	__u32 char_ns;			/* current character time, 0 = line off */
 	__u16 ctrl;			/* STAT control bits as last written */
 	__u16 fifo_depth;		/* RX and TX FIFO depth of the model */
