@@ -52,19 +52,21 @@ ok_point() {	# ok_point STATUS NAME [REASON]
 # dmesg reads the ring buffer synchronously (no reader process to wait for);
 # lines are told apart by their timestamp, which survives a ring buffer wrap.
 kmsg_last=-1
-# Print the new bad kernel lines since the last call (empty: clean). One awk
-# pass: under TCG every extra process costs tens of milliseconds.
-kmsg_new_bad() {
+# Set $bad to the new bad kernel lines since the last call (empty: clean).
+# Not for $(...): the position must survive in this shell. One awk pass: under
+# TCG every extra process costs tens of milliseconds.
+kmsg_check() {
 	out=$(dmesg 2>/dev/null | awk -v last="$kmsg_last" -v re="$BAD_KMSG" '
 		{
-			ts = $0; sub(/^\[ */, "", ts); sub(/\].*/, "", ts); ts += 0
-			if (ts > last || last < 0) { if ($0 ~ re && bad++ < 5) print; newest = ts }
+			# keep the text: printing a number would round it to 6 digits
+			stamp = $0; sub(/^\[ */, "", stamp); sub(/\].*/, "", stamp)
+			if (stamp + 0 > last + 0 || last < 0) { if ($0 ~ re && bad++ < 5) print; newest = stamp }
 		}
 		END { print "NEWEST " (newest == "" ? last : newest) }')
 	kmsg_last=${out##*NEWEST }
-	echo "$out" | grep -v '^NEWEST '
+	bad=$(echo "$out" | grep -v '^NEWEST ')
 }
-kmsg_new_bad >/dev/null	# boot messages are not any test's fault
+kmsg_check	# boot messages are not any test's fault
 
 # Shorter detectors than the defaults, so that a hang is named inside the
 # per-program timeout instead of after it.
@@ -112,7 +114,7 @@ for m in $modnames; do
 	elif ! out=$(modprobe -r "$m" 2>&1); then
 		why="modprobe -r: $(echo "$out" | tail -1)"
 	fi
-	bad=$(kmsg_new_bad)
+	kmsg_check
 	[ -n "$bad" ] && why="${why:+$why; }dmesg: $(echo "$bad" | head -1)"
 	if [ -n "$why" ]; then
 		ok_point fail "module $m loads and unloads" "$why"
@@ -161,7 +163,7 @@ while read -r suite prog path limit; do
 	start=$(date +%s)
 	status=$(run_prog "$limit" "$log" "$path")
 	secs=$(($(date +%s) - start))
-	bad=$(kmsg_new_bad)
+	kmsg_check
 	sed 's/^/# /' "$log" >>"$R/tap.txt"
 	# Inner TAP points of the program (top level only; nested ones are indented).
 	pass=$(grep -cE '^ok [0-9]+' "$log" | head -1)
@@ -213,7 +215,7 @@ for m in $modnames; do
 		modprobe -r "$m" 2>/dev/null || left="$left $m"
 	fi
 done
-bad=$(kmsg_new_bad)
+kmsg_check
 if [ -n "$left" ]; then
 	ok_point fail "project modules unload after the suite" "still loaded:$left"
 elif [ -n "$bad" ]; then

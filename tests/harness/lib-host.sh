@@ -94,7 +94,7 @@ report_lane() {
 		log=$results/logs/$(echo "$name" | tr '/' '.').log
 		echo "[$lane] FAILED: $name${reason:+ ($reason)}"
 		[ -f "$log" ] && tail -n 30 "$log" | sed "s|^|[$lane]   |"
-	done <"${results}/results.tsv" 2>/dev/null || true
+	done < <(cat "$results/results.tsv" 2>/dev/null)
 	awk -F'\t' -v lane="$lane" -v secs="$secs" '
 		{ p += $2; f += $3; s += $4 }
 		END { printf "[%s] %d ok, %d not ok, %d skipped, in %ds\n", lane, p, f, s, secs }' "$tsv"

@@ -45,6 +45,9 @@ modules=${modules:-$BUILD/kmod/x86_64/modules.list}
 [ -r "$kernel" ] || die "no kernel image $kernel (run: make deps)"
 [ -r "$modules" ] || die "no module list $modules (run: make modules)"
 
+case $TOP in
+*[[:space:]]*) die "the repository path must not contain white space (kernel command line): $TOP" ;;
+esac
 vmdir=$BUILD/vm/$lane
 mkdir -p "$vmdir"
 
@@ -110,8 +113,9 @@ qemu=(qemu-system-x86_64 -machine pc -accel tcg -cpu "${VMTEST_CPU:-max}" -smp "
 	-nographic -no-reboot -nic none
 	-kernel "$kernel" -initrd "$initramfs"
 	-virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap
-	-virtfs "local,path=$results,mount_tag=results,security_model=none")
-append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.runner=$TOP/tests/harness/guest-run.sh"
+	-virtfs "local,path=$results,mount_tag=results,security_model=none"
+	-virtfs "local,path=$TOP,mount_tag=repo,security_model=none,readonly=on,multidevs=remap")
+append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.repo=$TOP vmtest.runner=$TOP/tests/harness/guest-run.sh"
 
 if [ "$shell" = 1 ]; then
 	say "interactive guest shell; leave with 'exit' (or Ctrl-a x)"
