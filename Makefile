@@ -12,6 +12,7 @@
 #   make gates           W=1 + checkpatch --strict + sparse on the kernel sources
 #   make unit            CTest (plain and ASan/UBSan)
 #   make vm-x86 / vm-arm one VM lane
+#   make bench           the benchmarks: VM programs named bench* (TEST= selects)
 #   make clean
 #
 # KDIR=... builds the modules against another kernel tree (default: Debian's
@@ -32,7 +33,7 @@ TEST ?=
 export KVER KDIR TOP BUILD
 
 .PHONY: all default modules userland testprogs arm arm-modules arm-userland arm-testprogs \
-	check unit unit-asan gates vm-x86 vm-arm demo deps clean help
+	check unit unit-asan gates vm-x86 vm-arm bench demo deps clean help
 
 ifeq ($(ARCH),arm)
 default: arm
@@ -43,7 +44,7 @@ endif
 all: modules userland testprogs
 
 help:
-	@sed -n '3,19p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,20p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@$(TOP)/scripts/deps.sh
@@ -92,6 +93,9 @@ vm-arm:
 	@$(TOP)/scripts/build-kmod.sh armhf
 	@$(TOP)/scripts/build-testprogs.sh armhf
 	@$(TOP)/tests/harness/vm-arm.sh $(if $(TEST),--test "$(TEST)")
+
+bench: modules testprogs userland
+	@VMTEST_BENCH=1 $(TOP)/tests/harness/vm-x86.sh --lane bench $(if $(TEST),--test "$(TEST)")
 
 demo:
 	@$(TOP)/scripts/demo.sh

@@ -5,6 +5,8 @@
 # every VM test program of the lane. PROGDIR holds the compiled C programs as
 # the guest sees them. Shell programs run only on the x86_64 lanes (the guest
 # has the host's tools there); other lanes run the suites marked portable=1.
+# Programs named bench* are benchmarks: listed only when VMTEST_BENCH=1 (make
+# bench), and then only they are.
 list_tests() {
 	local lane=$1 progdir=$2
 	shift 2
@@ -31,6 +33,10 @@ list_tests() {
 				done ;;
 			esac
 		} | sort | while read -r prog f; do
+			case $prog in
+			bench*) [ "${VMTEST_BENCH:-0}" = 1 ] || continue ;;
+			*) [ "${VMTEST_BENCH:-0}" = 1 ] && continue ;;
+			esac
 			if [ $# -gt 0 ]; then
 				local want match=0
 				for want in "$@"; do
