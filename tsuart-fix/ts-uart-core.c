@@ -281,6 +281,13 @@ static void ts_uart_flush_rx(struct ts_uart *up)
 	}
 }
 
+/*
+ * serial_core's tty driver belongs to serial_core, so an open port does not
+ * pin this module: without a reference of our own, unloading it while a port
+ * is open frees the uart_state the open tty still uses. startup and shutdown
+ * are paired by serial_core (under the port mutex, which uart_remove_one_port
+ * also takes), so the reference lives exactly while the port is up.
+ */
 static int ts_uart_startup(struct uart_port *port)
 {
 	struct ts_uart *up = to_ts_uart(port);
@@ -288,13 +295,18 @@ static int ts_uart_startup(struct uart_port *port)
 	bool rx;
 	int ret;
 
+	if (!try_module_get(THIS_MODULE))
+		return -ENODEV;
+
 	uart_port_lock_irqsave(port, &flags);
 	ts_uart_flush_rx(up);
 	uart_port_unlock_irqrestore(port, flags);
 
 	ret = request_irq(port->irq, ts_uart_isr, 0, port->name, up);
-	if (ret)
+	if (ret) {
+		module_put(THIS_MODULE);
 		return ret;
+	}
 
 	/*
 	 * An event-triggered source may have fired while it was masked; serve
@@ -318,6 +330,7 @@ static void ts_uart_shutdown(struct uart_port *port)
 	up->ctrl &= ~TS7800_STAT_TXBRK;
 	ts_uart_write_ctrl(up);
 	uart_port_unlock_irqrestore(port, flags);
+	module_put(THIS_MODULE);
 }
 
 /* Nearest rate of the board-wide divisor table. */

@@ -18,38 +18,42 @@
 
 #define SIM_DEBUGFS_DIR	"ts7800-sim"
 
-/* Every fault counter is read and written under the model lock. */
-#define SIM_U32_ATTR(_name, _field, _max)					\
-static int _name##_get(void *data, u64 *val)					\
-{										\
-	struct sim_uart *u = data;						\
-	unsigned long flags;							\
-										\
-	spin_lock_irqsave(&u->sim->lock, flags);				\
-	*val = u->_field;							\
-	spin_unlock_irqrestore(&u->sim->lock, flags);				\
-	return 0;								\
-}										\
-static int _name##_set(void *data, u64 val)					\
-{										\
-	struct sim_uart *u = data;						\
-	unsigned long flags;							\
-										\
-	if (val > (_max))							\
-		return -EINVAL;							\
-	spin_lock_irqsave(&u->sim->lock, flags);				\
-	u->_field = val;							\
-	spin_unlock_irqrestore(&u->sim->lock, flags);				\
-	return 0;								\
-}										\
-DEFINE_DEBUGFS_ATTRIBUTE(_name##_fops, _name##_get, _name##_set, "%llu\n")
+/* Every fault knob is read and written under the model lock. */
+static int knob_get(void *data, u64 *val)
+{
+	struct sim_knob *k = data;
+	unsigned long flags;
 
-SIM_U32_ATTR(rx_drop, rx_fault.drop, U32_MAX);
-SIM_U32_ATTR(rx_corrupt, rx_fault.corrupt, U32_MAX);
-SIM_U32_ATTR(rx_corrupt_xor, rx_fault.corrupt_xor, TS7800_SIM_WORD_CHAR);
-SIM_U32_ATTR(tx_drop, tx_fault.drop, U32_MAX);
-SIM_U32_ATTR(tx_corrupt, tx_fault.corrupt, U32_MAX);
-SIM_U32_ATTR(tx_corrupt_xor, tx_fault.corrupt_xor, TS7800_SIM_WORD_CHAR);
+	spin_lock_irqsave(&k->u->sim->lock, flags);
+	*val = *k->val;
+	spin_unlock_irqrestore(&k->u->sim->lock, flags);
+	return 0;
+}
+
+static int knob_set(void *data, u64 val)
+{
+	struct sim_knob *k = data;
+	unsigned long flags;
+
+	if (val > k->max)
+		return -EINVAL;
+	spin_lock_irqsave(&k->u->sim->lock, flags);
+	*k->val = val;
+	spin_unlock_irqrestore(&k->u->sim->lock, flags);
+	return 0;
+}
+DEFINE_DEBUGFS_ATTRIBUTE(knob_fops, knob_get, knob_set, "%llu\n");
+
+static void sim_knob_add(struct sim_uart *u, struct dentry *dir, unsigned int i,
+			 const char *name, u32 *val, u32 max)
+{
+	struct sim_knob *k = &u->knobs[i];
+
+	k->u = u;
+	k->val = val;
+	k->max = max;
+	debugfs_create_file_unsafe(name, 0600, dir, k, &knob_fops);
+}
 
 static int noise_set(void *data, u64 val)
 {
@@ -135,12 +139,14 @@ void sim_debugfs_init(struct ts7800_sim *sim)
 
 		snprintf(name, sizeof(name), "uart%u", n);
 		dir = debugfs_create_dir(name, sim->debugfs);
-		debugfs_create_file_unsafe("rx_drop", 0600, dir, u, &rx_drop_fops);
-		debugfs_create_file_unsafe("rx_corrupt", 0600, dir, u, &rx_corrupt_fops);
-		debugfs_create_file_unsafe("rx_corrupt_xor", 0600, dir, u, &rx_corrupt_xor_fops);
-		debugfs_create_file_unsafe("tx_drop", 0600, dir, u, &tx_drop_fops);
-		debugfs_create_file_unsafe("tx_corrupt", 0600, dir, u, &tx_corrupt_fops);
-		debugfs_create_file_unsafe("tx_corrupt_xor", 0600, dir, u, &tx_corrupt_xor_fops);
+		sim_knob_add(u, dir, 0, "rx_drop", &u->rx_fault.drop, U32_MAX);
+		sim_knob_add(u, dir, 1, "rx_corrupt", &u->rx_fault.corrupt, U32_MAX);
+		sim_knob_add(u, dir, 2, "rx_corrupt_xor", &u->rx_fault.corrupt_xor,
+			     TS7800_SIM_WORD_CHAR);
+		sim_knob_add(u, dir, 3, "tx_drop", &u->tx_fault.drop, U32_MAX);
+		sim_knob_add(u, dir, 4, "tx_corrupt", &u->tx_fault.corrupt, U32_MAX);
+		sim_knob_add(u, dir, 5, "tx_corrupt_xor", &u->tx_fault.corrupt_xor,
+			     TS7800_SIM_WORD_CHAR);
 		debugfs_create_file_unsafe("noise", 0200, dir, u, &noise_fops);
 		debugfs_create_file_unsafe("peer", 0600, dir, u, &peer_fops);
 	}

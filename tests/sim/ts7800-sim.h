@@ -45,8 +45,17 @@ struct sim_ring {
 struct sim_fault {
 	u32 drop;		/* drop the next N characters */
 	u32 corrupt;		/* XOR the next N characters with corrupt_xor */
-	u16 corrupt_xor;
+	u32 corrupt_xor;
 };
+
+/* One debugfs fault file: a u32 of a port, bounded by max. */
+struct sim_knob {
+	struct sim_uart *u;
+	u32 *val;
+	u32 max;
+};
+
+#define SIM_NR_KNOBS	6
 
 struct sim_uart {
 	struct ts7800_sim *sim;
@@ -78,6 +87,7 @@ struct sim_uart {
 	struct sim_fault rx_fault;
 	struct sim_fault tx_fault;
 	struct ts7800_sim_wire_stats stats;
+	struct sim_knob knobs[SIM_NR_KNOBS];
 
 	struct miscdevice misc;
 	char name[24];
@@ -86,7 +96,7 @@ struct sim_uart {
 
 struct ts7800_sim {
 	struct device *dev;
-	spinlock_t lock;
+	spinlock_t lock;	/* the whole model, see the top of this file */
 	bool stopping;		/* teardown: engines must not restart */
 	u16 divisors[TS7800_UART_NR_CODES + 1];
 	u32 rowc;		/* PC/104 row C pin function register */
