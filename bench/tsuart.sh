@@ -1,7 +1,7 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
 # bench/tsuart.sh: TS-UART full-duplex throughput on the simulated FPGA. Needs
-# the project's modules, so it runs inside the VM: `make check TEST=tsuart/bench`
+# the project's modules, so it runs inside the VM: `make bench TEST=tsuart`
 # (tests/vm/tsuart/bench.sh calls this). Prints the ratios of one run (no
 # pass/fail on timing): achieved character rate / line limit each way (target
 # >= 0.99) and guest CPU per 1000 characters, for a 60 s run at 115200 Bd.
