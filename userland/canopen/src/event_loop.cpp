@@ -36,6 +36,7 @@ EventLoop::EventLoop()
   add_fd(timer_.get(), EPOLLIN, [this](std::uint32_t) {
     std::uint64_t expirations;
     (void)!::read(timer_.get(), &expirations, sizeof expirations);
+    armed_.reset();  // expired: the next arm_timer() must program it again
   });
   add_fd(wake_.get(), EPOLLIN, [this](std::uint32_t) {
     std::uint64_t n;
@@ -96,6 +97,8 @@ void EventLoop::arm_timer() {
     auto d = t.deadline();
     if (d && (!next || *d < *next)) next = d;
   }
+  if (next == armed_) return;
+  armed_ = next;
   itimerspec spec{};
   if (next) spec.it_value = to_timespec(*next);
   if (::timerfd_settime(timer_.get(), next ? TFD_TIMER_ABSTIME : 0, &spec, nullptr) < 0)

@@ -66,9 +66,12 @@ CanSocket CanSocket::open(const std::string& ifname) {
     throw_errno("CAN_RAW_ERR_FILTER");
   const int one = 1;
   if (::setsockopt(fd.get(), SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof one) < 0) throw_errno("SO_RXQ_OVFL");
-  // A bigger receive buffer absorbs bursts while the loop is busy.
-  const int rcvbuf = 1 << 20;
-  (void)::setsockopt(fd.get(), SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+  // A bigger receive buffer absorbs bursts while the loop is not scheduled: a
+  // CAN skb costs ~1 KiB, so the default (rmem_default, ~200 KiB) holds only a
+  // few hundred frames. FORCE needs CAP_NET_ADMIN; otherwise rmem_max caps it.
+  const int rcvbuf = 8 << 20;
+  if (::setsockopt(fd.get(), SOL_SOCKET, SO_RCVBUFFORCE, &rcvbuf, sizeof rcvbuf) < 0)
+    (void)::setsockopt(fd.get(), SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
   sockaddr_can addr{};
   addr.can_family = AF_CAN;
   addr.can_ifindex = static_cast<int>(idx);

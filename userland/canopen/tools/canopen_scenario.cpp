@@ -187,7 +187,11 @@ int main(int argc, char** argv) {
     drivers::IclaDriver icla(master, ic);
 
     double speed = 0;
-    CommandStream stream(master, 50ms, [&] { epos.set_speed(speed); });
+    std::function<void()> on_command;  // feeds the watchdog, set below
+    CommandStream stream(master, 50ms, [&] {
+      epos.set_speed(speed);
+      if (on_command) on_command();
+    });
     std::optional<TimePoint> watchdog_fired;
     Script script(master);
     bool expect_watchdog = false;
@@ -205,21 +209,20 @@ int main(int argc, char** argv) {
         loop.stop();
       });
     });
-    // Each command feeds the watchdog, whatever the scenario.
-    CommandStream feeder(master, 50ms, [&] { watchdog.feed(); });
+    // Each motion command feeds the watchdog, whatever the scenario.
+    on_command = [&] { watchdog.feed(); };
     auto drive_at = [&](double v) {
       speed = v;
       stream.start();
-      feeder.start();
     };
     auto events = [&](const DriveEvent& e) {
       std::printf("# event: %s\n", e.text.c_str());
       if (e.kind == DriveEventKind::kHeartbeatLost && scenario == "hb-loss") {
         stream.stop();
-        feeder.stop();
-        epos.quick_stop([&](std::error_code err) {
+        const unsigned node = e.node;
+        epos.quick_stop([&, node](std::error_code err) {
           const bool ok = !err && epos.drive().axis().state() == cia402::State::kQuickStopActive;
-          std::printf("%s - propulsion quick stop after heartbeat loss of node %u\n", ok ? "ok" : "not ok", e.node);
+          std::printf("%s - propulsion quick stop after heartbeat loss of node %u\n", ok ? "ok" : "not ok", node);
           exit_code = ok ? 0 : 1;
           loop.stop();
         });
@@ -264,7 +267,6 @@ int main(int argc, char** argv) {
           .then("IclA reports 0.3 rad on TPDO2", [&](auto d) { d(check(icla.angle() && std::fabs(*icla.angle() - 0.3) < 1e-9)); })
           .then("disable EPOS", [&](auto d) {
             stream.stop();
-            feeder.stop();
             epos.drive().disable(d);
           })
           .then("disable IclA", [&](auto d) { icla.drive().disable(d); });
@@ -288,7 +290,6 @@ int main(int argc, char** argv) {
           .wait(1s)
           .then("commands stopped", [&](auto d) {
             stream.stop();
-            feeder.stop();
             d({});
           });
     } else if (scenario == "capture") {

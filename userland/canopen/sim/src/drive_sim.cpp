@@ -127,6 +127,10 @@ void SimulatedDrive::install_validators() {
     for (PdoKind kind : {PdoKind::kRpdo, PdoKind::kTpdo}) {
       const std::uint16_t comm = pdo_comm_index(kind, n);
       const std::uint16_t map = pdo_map_index(kind, n);
+      if (kind == PdoKind::kTpdo) {
+        od_.on_write(comm, [this](std::uint8_t) { tpdo_cache_valid_ = false; });
+        od_.on_write(map, [this](std::uint8_t) { tpdo_cache_valid_ = false; });
+      }
       od_.set_validator(comm, [this, comm](std::uint8_t sub, std::span<const std::uint8_t> d) {
         if (sub != 1) return SdoAbort::kNone;
         const auto cur = od_.get<std::uint32_t>(comm, 1);
@@ -196,6 +200,7 @@ void SimulatedDrive::reset(bool application) {
   }
   sdo_.reset();
   tpdo_ = {};
+  tpdo_cache_valid_ = false;
   rpdo_latched_ = {};
   master_hb_seen_.reset();
   master_hb_lost_ = false;
@@ -465,23 +470,35 @@ void SimulatedDrive::step(double dt) {
   update_statusword();
 }
 
-void SimulatedDrive::service_tpdos(bool sync, std::uint8_t) {
-  if (nmt_ != NmtState::kOperational) return;
-  const TimePoint now = now_();
+void SimulatedDrive::refresh_tpdo_cache() {
   for (unsigned n = 1; n <= 4; ++n) {
-    const PdoMapping m = mapping_from(od_, PdoKind::kTpdo, n);
-    if (!m.enabled() || m.entries.empty()) continue;
-    auto codec = PdoCodec::build(m);
-    if (!codec) continue;
-    CanFrame f = codec->blank();
-    for (const PdoEntry& e : m.entries) {
+    TpdoCache& c = tpdo_cache_[n - 1];
+    c.mapping = mapping_from(od_, PdoKind::kTpdo, n);
+    c.codec = c.mapping.entries.empty() ? std::nullopt : PdoCodec::build(c.mapping);
+    c.inhibit_100us = od_.get<std::uint16_t>(pdo_comm_index(PdoKind::kTpdo, n), 3);
+    c.event_timer_ms = od_.get<std::uint16_t>(pdo_comm_index(PdoKind::kTpdo, n), 5);
+  }
+  tpdo_cache_valid_ = true;
+}
+
+void SimulatedDrive::service_tpdos(bool sync, std::uint8_t) {
+  tpdo_due_.reset();
+  if (nmt_ != NmtState::kOperational) return;
+  if (!tpdo_cache_valid_) refresh_tpdo_cache();
+  const TimePoint now = now_();
+  auto due_at = [this](TimePoint t) {
+    if (!tpdo_due_ || t < *tpdo_due_) tpdo_due_ = t;
+  };
+  for (unsigned n = 1; n <= 4; ++n) {
+    const TpdoCache& c = tpdo_cache_[n - 1];
+    if (!c.codec) continue;
+    CanFrame f = c.codec->blank();
+    for (const PdoEntry& e : c.mapping.entries) {
       const OdEntry* obj = od_.find(e.index, e.sub);
-      std::uint64_t v = 0;
-      if (obj) v = load_le<std::uint64_t>(obj->value);
-      codec->set(f, e.index, e.sub, v);
+      c.codec->set(f, e.index, e.sub, obj ? load_le<std::uint64_t>(obj->value) : 0);
     }
     TpdoState& st = tpdo_[n - 1];
-    const std::uint8_t type = m.transmission_type;
+    const std::uint8_t type = c.mapping.transmission_type;
     bool due = false;
     if (type >= 1 && type <= 240) {
       if (sync && ++st.sync_count >= type) {
@@ -491,11 +508,14 @@ void SimulatedDrive::service_tpdos(bool sync, std::uint8_t) {
     } else if (type == 0) {
       due = sync && (!st.last || !(*st.last == f));
     } else if (type >= 254) {
-      const auto inhibit = std::chrono::microseconds(100 * od_.get<std::uint16_t>(pdo_comm_index(PdoKind::kTpdo, n), 3));
-      const auto timer = std::chrono::milliseconds(od_.get<std::uint16_t>(pdo_comm_index(PdoKind::kTpdo, n), 5));
+      const auto inhibit = std::chrono::microseconds(100 * c.inhibit_100us);
+      const auto timer = std::chrono::milliseconds(c.event_timer_ms);
       const bool changed = !st.last || !(*st.last == f);
       const bool timer_due = timer.count() > 0 && now - st.last_sent >= timer;
-      due = (changed || timer_due) && (!st.last || now - st.last_sent >= inhibit);
+      const bool inhibited = st.last && now - st.last_sent < inhibit;
+      due = (changed || timer_due) && !inhibited;
+      if (changed && inhibited) due_at(st.last_sent + inhibit);
+      if (timer.count() > 0) due_at((due ? now : st.last_sent) + timer);
     }
     if (!due) continue;
     st.last = f;
@@ -521,11 +541,19 @@ void SimulatedDrive::inject_fault(std::uint16_t code) {
   service_tpdos(false);
 }
 
+bool SimulatedDrive::dynamic() const {
+  return vel_ != 0 || moving_ || homing_active_ || state_ == State::kQuickStopActive ||
+         state_ == State::kFaultReactionActive ||
+         (state_ == State::kOperationEnabled && mode() == static_cast<std::int8_t>(cia402::Mode::kProfileVelocity) &&
+          od_.get<std::int32_t>(0x60FF) != 0 && !(od_.get<std::uint16_t>(0x6040) & cw::kHalt));
+}
+
 void SimulatedDrive::poll() {
   const TimePoint now = now_();
   sdo_.poll();
-  if (nmt_ == NmtState::kStopped || nmt_ == NmtState::kBootUp) {
-    // no PDOs, but heartbeat continues
+  if (!dynamic()) {
+    // Nothing moves: no need to integrate the idle time step by step.
+    last_step_ = now;
   }
   while (now - last_step_ >= cfg_.step) {
     last_step_ += cfg_.step;
@@ -542,8 +570,17 @@ void SimulatedDrive::poll() {
 }
 
 std::optional<TimePoint> SimulatedDrive::deadline() const {
-  TimePoint d = last_step_ + cfg_.step;
-  if (auto s = sdo_.deadline(); s && *s < d) d = *s;
+  // Stepping at full rate only while something moves keeps an idle simulator
+  // (and the VM running it) quiet.
+  TimePoint d = dynamic() ? last_step_ + cfg_.step : now_() + std::chrono::milliseconds(50);
+  auto take = [&d](std::optional<TimePoint> t) {
+    if (t && *t < d) d = *t;
+  };
+  take(sdo_.deadline());
+  take(tpdo_due_);
+  if (od_.get<std::uint16_t>(0x1017)) take(next_heartbeat_);
+  const auto entry = od_.get<std::uint32_t>(0x1016, 1);
+  if ((entry & 0xFFFF) && master_hb_seen_ && !master_hb_lost_) take(*master_hb_seen_ + std::chrono::milliseconds(entry & 0xFFFF));
   return d;
 }
 

@@ -60,6 +60,7 @@ class EventLoop {
   std::mutex mutex_;
   std::vector<std::function<void()>> posted_;
   bool stopped_ = false;
+  std::optional<TimePoint> armed_;  // what the timerfd holds, to skip redundant syscalls
 };
 
 // Runs a loop on its own thread; stops and joins on destruction.

@@ -16,6 +16,7 @@
 #include "advee/canopen/clock.hpp"
 #include "advee/canopen/frame.hpp"
 #include "advee/canopen/nmt.hpp"
+#include "advee/canopen/pdo.hpp"
 #include "advee/canopen/sim/object_dictionary.hpp"
 #include "advee/canopen/sim/sdo_server.hpp"
 
@@ -119,6 +120,18 @@ class SimulatedDrive {
     TimePoint last_sent{};
     unsigned sync_count = 0;
   };
+  // Mapping + codec per TPDO, rebuilt only when 0x1800-0x1803/0x1A00-0x1A03 change.
+  struct TpdoCache {
+    PdoMapping mapping;
+    std::optional<PdoCodec> codec;
+    std::uint16_t inhibit_100us = 0;
+    std::uint16_t event_timer_ms = 0;
+  };
+  void refresh_tpdo_cache();
+  bool dynamic() const;
+  std::array<TpdoCache, 4> tpdo_cache_{};
+  bool tpdo_cache_valid_ = false;
+  std::optional<TimePoint> tpdo_due_;  // an inhibited change or an event timer
   std::array<TpdoState, 4> tpdo_{};
   std::array<std::optional<CanFrame>, 4> rpdo_latched_{};  // synchronous RPDOs wait for SYNC
   std::uint64_t rpdos_received_ = 0;
