@@ -239,12 +239,13 @@ int main(int argc, char **argv)
 	cpu_read(&c1);
 	t1 = now_s();
 
+	/* End cleanly: writers finish their chunk, everything sent arrives. */
 	stop_writers = 1;
-	tcflush(tty_fd, TCOFLUSH);
-	sleep(2);	/* let what is on the line arrive */
-	stop_readers = 1;
 	pthread_join(th[2], NULL);
 	pthread_join(th[3], NULL);
+	tcdrain(tty_fd);
+	sleep(2);
+	stop_readers = 1;
 	pthread_join(th[0], NULL);
 	pthread_join(th[1], NULL);
 

@@ -54,6 +54,7 @@ struct ts_uart {
 	unsigned int stat_reg;
 	unsigned int data_reg;
 	u16 ctrl;			/* control bits of STAT; port lock */
+	bool oerr;			/* OERR seen, not yet reported; port lock */
 	struct ts_uart_frame frame;	/* port lock */
 };
 
@@ -62,9 +63,19 @@ static inline struct ts_uart *to_ts_uart(struct uart_port *port)
 	return container_of(port, struct ts_uart, port);
 }
 
+/*
+ * A STAT read may consume one-shot indications (OERR and the TX event may
+ * clear on read), so every read happens under the port lock, OERR is latched
+ * here until reported, and code outside the ISR that needs STAT serves the
+ * whole port (ts_uart_service()) instead of looking at one bit.
+ */
 static int ts_uart_read_stat(struct ts_uart *up, unsigned int *stat)
 {
-	return regmap_read(up->map, up->stat_reg, stat);
+	int ret = regmap_read(up->map, up->stat_reg, stat);
+
+	if (!ret && (*stat & TS7800_STAT_OERR))
+		up->oerr = true;
+	return ret;
 }
 
 /* STAT status bits ignore writes, so the control shadow is written whole. */
@@ -77,11 +88,13 @@ static void ts_uart_overrun(struct ts_uart *up)
 {
 	struct uart_port *port = &up->port;
 
+	up->oerr = false;
 	port->icount.overrun++;
 	if (!(port->ignore_status_mask & TS_UART_ST_OE))
 		tty_insert_flip_char(&port->state->port, 0, TTY_OVERRUN);
 }
 
+/* Read one character; stat is the STAT value that showed DR. */
 static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
 {
 	struct uart_port *port = &up->port;
@@ -110,7 +123,8 @@ static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
 			port->icount.frame++;
 		}
 	}
-	if (stat & TS7800_STAT_OERR) {
+	if (up->oerr) {
+		up->oerr = false;
 		status |= TS_UART_ST_OE;
 		port->icount.overrun++;
 	}
@@ -138,6 +152,9 @@ static void ts_uart_tx_chars(struct ts_uart *up, unsigned int stat)
 	struct circ_buf *xmit = &port->state->xmit;
 	u16 word;
 
+	/* tx_empty() may serve a port that is not started (no buffer). */
+	if (!xmit->buf)
+		return;
 	while (stat & TS7800_STAT_TBRE) {
 		if (port->x_char) {
 			word = ts_uart_frame_encode(&up->frame, port->x_char);
@@ -161,11 +178,12 @@ static void ts_uart_tx_chars(struct ts_uart *up, unsigned int stat)
  * Serve the port until it has nothing more to say: no received character
  * left and no room or nothing to transmit. Ending only then makes the ISR
  * correct for level-triggered and for edge-triggered (event) sources.
- * Returns true if characters were queued to the tty.
+ * Called with the port lock held; pushes received characters to the tty.
+ * Returns the last STAT value read (0 if the register could not be read).
  */
-static bool ts_uart_service(struct ts_uart *up)
+static unsigned int ts_uart_service(struct ts_uart *up)
 {
-	unsigned int stat, n;
+	unsigned int stat = 0, n;
 	bool rx = false;
 
 	for (n = 0; n < TS_UART_ISR_BUDGET; n++) {
@@ -176,7 +194,7 @@ static bool ts_uart_service(struct ts_uart *up)
 			rx = true;
 			continue;
 		}
-		if (stat & TS7800_STAT_OERR) {
+		if (up->oerr) {
 			ts_uart_overrun(up);
 			rx = true;
 		}
@@ -186,30 +204,31 @@ static bool ts_uart_service(struct ts_uart *up)
 	}
 	if (n == TS_UART_ISR_BUDGET)
 		dev_err_ratelimited(up->port.dev, "receive data ready never clears\n");
-	return rx;
+	if (rx)
+		tty_flip_buffer_push(&up->port.state->port);
+	return stat;
 }
 
 static irqreturn_t ts_uart_isr(int irq, void *dev_id)
 {
 	struct ts_uart *up = dev_id;
 	unsigned long flags;
-	bool rx;
 
 	uart_port_lock_irqsave(&up->port, &flags);
-	rx = ts_uart_service(up);
+	ts_uart_service(up);
 	uart_port_unlock_irqrestore(&up->port, flags);
-	if (rx)
-		tty_flip_buffer_push(&up->port.state->port);
 	return IRQ_HANDLED;
 }
 
 static unsigned int ts_uart_tx_empty(struct uart_port *port)
 {
 	struct ts_uart *up = to_ts_uart(port);
+	unsigned long flags;
 	unsigned int stat;
 
-	if (ts_uart_read_stat(up, &stat))
-		return 0;
+	uart_port_lock_irqsave(port, &flags);
+	stat = ts_uart_service(up);
+	uart_port_unlock_irqrestore(port, flags);
 	return (stat & TS7800_STAT_TRE) ? TIOCSER_TEMT : 0;
 }
 
@@ -227,10 +246,10 @@ static void ts_uart_set_mctrl(struct uart_port *port, unsigned int mctrl)
 static unsigned int ts_uart_get_mctrl(struct uart_port *port)
 {
 	struct ts_uart *up = to_ts_uart(port);
-	unsigned int stat, mctrl = TIOCM_CAR | TIOCM_DSR;
+	unsigned int mctrl = TIOCM_CAR | TIOCM_DSR;
 
 	/* The port has no DCD/DSR lines: report them asserted, like a 3-wire port. */
-	if (!ts_uart_read_stat(up, &stat) && (stat & TS7800_STAT_CTS))
+	if (ts_uart_service(up) & TS7800_STAT_CTS)
 		mctrl |= TIOCM_CTS;
 	return mctrl;
 }
@@ -242,11 +261,7 @@ static void ts_uart_stop_tx(struct uart_port *port)
 
 static void ts_uart_start_tx(struct uart_port *port)
 {
-	struct ts_uart *up = to_ts_uart(port);
-	unsigned int stat;
-
-	if (!ts_uart_read_stat(up, &stat))
-		ts_uart_tx_chars(up, stat);
+	ts_uart_service(to_ts_uart(port));
 }
 
 static void ts_uart_stop_rx(struct uart_port *port)
@@ -279,6 +294,7 @@ static void ts_uart_flush_rx(struct ts_uart *up)
 		if (regmap_read(up->map, up->data_reg, &word))
 			break;
 	}
+	up->oerr = false;
 }
 
 /*
@@ -292,7 +308,6 @@ static int ts_uart_startup(struct uart_port *port)
 {
 	struct ts_uart *up = to_ts_uart(port);
 	unsigned long flags;
-	bool rx;
 	int ret;
 
 	if (!try_module_get(THIS_MODULE))
@@ -313,10 +328,8 @@ static int ts_uart_startup(struct uart_port *port)
 	 * the port once so that nothing waits for an interrupt that is gone.
 	 */
 	uart_port_lock_irqsave(port, &flags);
-	rx = ts_uart_service(up);
+	ts_uart_service(up);
 	uart_port_unlock_irqrestore(port, flags);
-	if (rx)
-		tty_flip_buffer_push(&port->state->port);
 	return 0;
 }
 

@@ -64,9 +64,42 @@ void ts7800_sim_irq_source(struct ts7800_sim *sim, unsigned int hwirq, bool leve
 		sim->irq_level &= ~bit;
 	if ((sim->irq_enable & bit) && (sim->edge ? rose : level))
 		sim->irq_cause |= bit;
-	if ((sim->irq_cause & sim->irq_enable) && !sim->irq_hold)
-		irq_work_queue(&sim->irq_work);
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+}
+
+/* Latched, enabled and not held: what the CPU would be interrupted for now. */
+static unsigned long sim_irq_pending(struct ts7800_sim *sim)
+{
+	unsigned long pending, flags;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	pending = sim->irq_hold ? 0 : sim->irq_cause & sim->irq_enable;
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+	return pending;
+}
+
+/*
+ * Deliver every pending source. Only from hard irq context with no model
+ * lock held: the simulator's own timers (directly, saving an IPI per
+ * character) and the irq_work below.
+ */
+void ts7800_sim_irq_deliver(struct ts7800_sim *sim)
+{
+	unsigned long pending = sim_irq_pending(sim);
+	unsigned int bit;
+
+	for_each_set_bit(bit, &pending, TS7800_FPGA_NR_IRQS)
+		generic_handle_domain_irq(sim->domain, bit);
+}
+
+/*
+ * Delivery after a register access: the caller may be the driver's own ISR
+ * (holding its port lock), so the interrupt is raised through irq_work.
+ */
+void ts7800_sim_irq_kick(struct ts7800_sim *sim)
+{
+	if (sim_irq_pending(sim))
+		irq_work_queue(&sim->irq_work);
 }
 
 /*
@@ -84,19 +117,9 @@ void ts7800_sim_irq_set_hold(struct ts7800_sim *sim, bool hold)
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 }
 
-/* Deliver every pending enabled source; runs in hard irq context. */
 static void sim_irq_work(struct irq_work *work)
 {
-	struct ts7800_sim *sim = container_of(work, struct ts7800_sim, irq_work);
-	unsigned long pending, flags;
-	unsigned int bit;
-
-	raw_spin_lock_irqsave(&sim->irq_lock, flags);
-	pending = sim->irq_hold ? 0 : sim->irq_cause & sim->irq_enable;
-	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
-
-	for_each_set_bit(bit, &pending, TS7800_FPGA_NR_IRQS)
-		generic_handle_domain_irq(sim->domain, bit);
+	ts7800_sim_irq_deliver(container_of(work, struct ts7800_sim, irq_work));
 }
 
 static void sim_irq_ack(struct irq_data *d)

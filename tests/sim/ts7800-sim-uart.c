@@ -200,6 +200,7 @@ static enum hrtimer_restart sim_rx_timer(struct hrtimer *t)
 		ret = HRTIMER_RESTART;
 	}
 	spin_unlock_irqrestore(&u->sim->lock, flags);
+	ts7800_sim_irq_deliver(u->sim);
 	return ret;
 }
 
@@ -269,6 +270,7 @@ static enum hrtimer_restart sim_tx_timer(struct hrtimer *t)
 		ret = HRTIMER_RESTART;
 	}
 	spin_unlock_irqrestore(&u->sim->lock, flags);
+	ts7800_sim_irq_deliver(u->sim);
 	return ret;
 }
 
@@ -390,6 +392,7 @@ int sim_reg_read(void *context, unsigned int reg, unsigned int *val)
 		break;
 	}
 	spin_unlock_irqrestore(&sim->lock, flags);
+	ts7800_sim_irq_kick(sim);
 	return 0;
 }
 
@@ -425,6 +428,7 @@ int sim_reg_write(void *context, unsigned int reg, unsigned int val)
 		break;	/* MODEL: other registers ignore writes */
 	}
 	spin_unlock_irqrestore(&sim->lock, flags);
+	ts7800_sim_irq_kick(sim);
 	return 0;
 }
 

@@ -162,6 +162,7 @@ static long wire_ioctl(struct file *file, unsigned int cmd, unsigned long arg)
 		u->cts = level;
 		sim_uart_tx_kick(u);
 		spin_unlock_irqrestore(&sim->lock, flags);
+		ts7800_sim_irq_kick(sim);
 		return 0;
 	default:
 		return -ENOTTY;

@@ -124,6 +124,8 @@ extern bool sim_oerr_clear_on_data;
 /* ts7800-sim-main.c */
 void ts7800_sim_irq_source(struct ts7800_sim *sim, unsigned int hwirq, bool level);
 void ts7800_sim_irq_set_hold(struct ts7800_sim *sim, bool hold);
+void ts7800_sim_irq_deliver(struct ts7800_sim *sim);
+void ts7800_sim_irq_kick(struct ts7800_sim *sim);
 
 /* ts7800-sim-uart.c */
 int sim_uart_init(struct ts7800_sim *sim, struct sim_uart *u, unsigned int idx);
