@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
         send();
       });
       OneShot give_up(master);
-      give_up.at(master.now() + std::chrono::seconds(seconds + count / 100), [&] { loop.stop(); });
+      give_up.at(master.now() + std::chrono::seconds(seconds) + count * 50ms, [&] { loop.stop(); });
       loop.run();
       std::sort(us.begin(), us.end());
       auto pct = [&](double p) { return us.empty() ? 0.0 : us[static_cast<std::size_t>(p * (us.size() - 1))]; };
@@ -144,22 +144,36 @@ int main(int argc, char** argv) {
       // A master with its usual load: heartbeat consumer for two drives,
       // heartbeat producer, every frame demultiplexed.
       std::uint64_t seen = 0;
-      master.set_observer([&](const CanFrame&) { ++seen; });
       master.heartbeat_consumer().monitor(1, 300ms);
       master.heartbeat_consumer().monitor(2, 300ms);
       master.heartbeat_producer().set_period(100ms);
-      const double cpu0 = cpu_seconds();
-      const TimePoint start = master.now();
-      timer.at(start + std::chrono::seconds(seconds), [&] { loop.stop(); });
+      // Measure from the first flood frame until the bus has been quiet for
+      // 500 ms (or -d seconds in all), so the CPU share is that of the flood.
+      double cpu0 = 0;
+      TimePoint first{}, last{};
+      master.set_observer([&](const CanFrame&) {
+        if (seen++ == 0) {
+          first = master.now();
+          cpu0 = cpu_seconds();
+        }
+        last = master.now();
+      });
+      const TimePoint give_up_at = master.now() + std::chrono::seconds(seconds);
+      std::function<void()> check = [&] {
+        if ((seen > 0 && master.now() - last > 500ms) || master.now() >= give_up_at) return loop.stop();
+        timer.at(master.now() + 100ms, check);
+      };
+      timer.at(master.now() + 100ms, check);
       std::printf("ready\n");
       std::fflush(stdout);
       loop.run();
-      const double wall = std::chrono::duration<double>(master.now() - start).count();
-      const double cpu = cpu_seconds() - cpu0;
+      const double cpu = seen ? cpu_seconds() - cpu0 : 0;
+      const double wall = seen ? std::chrono::duration<double>(last - first).count() : 0;
       const auto& st = rt.port().stats();
       std::printf("flood_frames_received %llu\nflood_kernel_drops %u\nflood_cpu_s %.3f\nflood_wall_s %.3f\n"
-                  "flood_cpu_share %.3f\nflood_frames_per_cpu_s %.0f\n",
-                  static_cast<unsigned long long>(seen), st.rx_dropped, cpu, wall, cpu / wall, seen / std::max(cpu, 1e-9));
+                  "flood_cpu_share %.3f\nflood_cpu_us_per_frame %.2f\n",
+                  static_cast<unsigned long long>(seen), st.rx_dropped, cpu, wall, cpu / std::max(wall, 1e-9),
+                  seen ? cpu * 1e6 / static_cast<double>(seen) : 0.0);
     } else {
       std::fprintf(stderr, "canopen-bench: unknown measurement '%s'\n", what.c_str());
       return 2;
