@@ -6,7 +6,7 @@
 # through regmap's debugfs cache_bypass switch, and must equal the cached
 # run's chip reads plus its cache hits (the regmap_reg_read_cache event).
 . "$(dirname "$0")/lib.sh"
-trap cleanup_modules EXIT
+trap cleanup_all EXIT
 
 CONF=$VMTEST_REPO/i2c-max6615/advee-max6615.conf
 DEBUGFS=/sys/kernel/debug

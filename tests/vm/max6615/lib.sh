@@ -225,11 +225,17 @@ tap_done() {
 	[ "$TAP_N" -gt 0 ] && [ "$TAP_FAILED" -eq 0 ]
 }
 
-# Unload what a test loaded; safe when nothing is loaded.
+# cleanup_modules: unload the driver and the stub (between steps of a test).
 cleanup_modules() {
 	modprobe -r max6615 2>/dev/null
 	modprobe -r i2c-stub 2>/dev/null
-	[ "$I2C_DEV_LOADED_BY_US" = 1 ] && modprobe -r i2c-dev 2>/dev/null
+	return 0
+}
+
+# cleanup_all: also undo the tracing and i2c-dev (the EXIT trap of a test).
+cleanup_all() {
 	[ "$TRACE_ACTIVE" = 1 ] && trace_teardown
+	cleanup_modules
+	[ "$I2C_DEV_LOADED_BY_US" = 1 ] && modprobe -r i2c-dev 2>/dev/null
 	return 0
 }

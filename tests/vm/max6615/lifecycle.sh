@@ -4,7 +4,7 @@
 # file held open, and removing the adapter under the bound driver are clean:
 # no hang, no kernel warning (the harness checks dmesg), readings correct again.
 . "$(dirname "$0")/lib.sh"
-trap 'kill "$reader" 2>/dev/null; exec 3<&- 2>/dev/null; cleanup_modules' EXIT
+trap 'kill "$reader" 2>/dev/null; exec 3<&- 2>/dev/null; cleanup_all' EXIT
 reader=
 
 tap_header

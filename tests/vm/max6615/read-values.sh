@@ -4,7 +4,7 @@
 # the BR-FAN1 register image (lib.sh), including 1/8 degree fractions, the
 # 0 and 255 degree ends, a stalled tach and the status flags.
 . "$(dirname "$0")/lib.sh"
-trap cleanup_modules EXIT
+trap cleanup_all EXIT
 
 tap_header
 

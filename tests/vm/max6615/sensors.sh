@@ -4,7 +4,7 @@
 # computer-box labels, temperatures, crit limits and fans; the alarm and fault
 # flags appear exactly when the status registers say so.
 . "$(dirname "$0")/lib.sh"
-trap cleanup_modules EXIT
+trap cleanup_all EXIT
 
 CONF=$VMTEST_REPO/i2c-max6615/advee-max6615.conf
 

@@ -5,7 +5,7 @@
 # with i2cdump), values clamp, pwm values read back unchanged, and bad input
 # is rejected with the right errno without touching the chip.
 . "$(dirname "$0")/lib.sh"
-trap cleanup_modules EXIT
+trap cleanup_all EXIT
 
 tap_header
 stub_load 0x18 || { tap_diag "cannot load i2c-stub"; exit 1; }
