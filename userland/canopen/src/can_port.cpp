@@ -9,6 +9,7 @@ namespace {
 constexpr auto kFirstBackoff = std::chrono::milliseconds(1);
 constexpr auto kMaxBackoff = std::chrono::milliseconds(32);
 constexpr std::size_t kMaxReadsPerWakeup = 256;  // let timers run under a flood
+constexpr std::size_t kRxBatch = 64;             // frames per recvmmsg()
 }  // namespace
 
 CanPort::CanPort(EventLoop& loop, CanSocket socket, FrameHandler on_frame, ErrorHandler on_error)
@@ -54,28 +55,34 @@ void CanPort::flush() {
 }
 
 void CanPort::on_readable() {
-  for (std::size_t i = 0; i < kMaxReadsPerWakeup; ++i) {
-    auto r = socket_.receive();
-    if (!r) break;
-    if (auto* f = std::get_if<CanFrame>(&*r)) {
-      ++stats_.rx_frames;
-      if (state_ == CanControllerState::kBusOff) {
-        state_ = CanControllerState::kErrorActive;  // traffic again: the controller is back
-        flush();
-      }
-      on_frame_(*f);
-    } else {
-      ++stats_.error_frames;
-      const CanErrorInfo& e = std::get<CanSocket::Error>(*r).info;
-      if (e.state) {
-        const bool was_off = state_ == CanControllerState::kBusOff;
-        state_ = *e.state;
-        if (was_off && state_ != CanControllerState::kBusOff) flush();
-      }
-      if (on_error_) on_error_(e);
-    }
+  for (std::size_t read = 0; read < kMaxReadsPerWakeup;) {
+    rx_batch_.clear();
+    const std::size_t n = socket_.receive_batch(rx_batch_, kRxBatch);
+    read += n;
+    for (const auto& r : rx_batch_) dispatch(r);
+    if (n < kRxBatch) break;  // drained
   }
   stats_.rx_dropped = socket_.dropped();
+}
+
+void CanPort::dispatch(const CanSocket::Received& r) {
+  if (auto* f = std::get_if<CanFrame>(&r)) {
+    ++stats_.rx_frames;
+    if (state_ == CanControllerState::kBusOff) {
+      state_ = CanControllerState::kErrorActive;  // traffic again: the controller is back
+      flush();
+    }
+    on_frame_(*f);
+    return;
+  }
+  ++stats_.error_frames;
+  const CanErrorInfo& e = std::get<CanSocket::Error>(r).info;
+  if (e.state) {
+    const bool was_off = state_ == CanControllerState::kBusOff;
+    state_ = *e.state;
+    if (was_off && state_ != CanControllerState::kBusOff) flush();
+  }
+  if (on_error_) on_error_(e);
 }
 
 }  // namespace advee::canopen

@@ -97,11 +97,15 @@ void EventLoop::arm_timer() {
     auto d = t.deadline();
     if (d && (!next || *d < *next)) next = d;
   }
-  if (next == armed_) return;
+  // Only move the timer earlier: a later or vanished deadline leaves the armed
+  // one, which then costs one spurious wake-up instead of a syscall on every
+  // request (an SDO stream moves its deadline later with each frame).
+  if (armed_ && (!next || *armed_ <= *next)) return;
+  if (!next) return;
   armed_ = next;
   itimerspec spec{};
-  if (next) spec.it_value = to_timespec(*next);
-  if (::timerfd_settime(timer_.get(), next ? TFD_TIMER_ABSTIME : 0, &spec, nullptr) < 0)
+  spec.it_value = to_timespec(*next);
+  if (::timerfd_settime(timer_.get(), TFD_TIMER_ABSTIME, &spec, nullptr) < 0)
     throw_errno("timerfd_settime");
 }
 

@@ -91,6 +91,48 @@ CanSocket::SendStatus CanSocket::send(const CanFrame& f) {
   return SendStatus::kFailed;
 }
 
+namespace {
+std::optional<CanSocket::Received> convert(const ::can_frame& k, ssize_t n) {
+  if (n != static_cast<ssize_t>(sizeof k)) return std::nullopt;  // not a classic frame
+  if (k.can_id & CAN_ERR_FLAG) return CanSocket::Error{decode_error_frame(k)};
+  CanFrame f;
+  f.id = k.can_id & (k.can_id & CAN_EFF_FLAG ? CAN_EFF_MASK : CAN_SFF_MASK);
+  f.rtr = k.can_id & CAN_RTR_FLAG;
+  f.len = k.len > 8 ? 8 : k.len;
+  std::memcpy(f.data.data(), k.data, 8);
+  if (k.can_id & CAN_EFF_FLAG) f.id |= 0x80000000u;  // 29-bit: never matches a CANopen COB-ID
+  return f;
+}
+}  // namespace
+
+std::size_t CanSocket::receive_batch(std::vector<Received>& out, std::size_t max) {
+  constexpr std::size_t kBatch = 64;
+  if (max > kBatch) max = kBatch;
+  ::can_frame frames[kBatch];
+  iovec iov[kBatch];
+  mmsghdr msgs[kBatch];
+  alignas(cmsghdr) char control[kBatch][CMSG_SPACE(sizeof(std::uint32_t))];
+  for (std::size_t i = 0; i < max; ++i) {
+    iov[i] = {&frames[i], sizeof frames[i]};
+    msgs[i] = {};
+    msgs[i].msg_hdr.msg_iov = &iov[i];
+    msgs[i].msg_hdr.msg_iovlen = 1;
+    msgs[i].msg_hdr.msg_control = control[i];
+    msgs[i].msg_hdr.msg_controllen = sizeof control[i];
+  }
+  const int n = ::recvmmsg(fd_.get(), msgs, static_cast<unsigned>(max), MSG_DONTWAIT, nullptr);
+  if (n < 0) {
+    if (errno == EAGAIN || errno == EINTR) return 0;
+    throw_errno("recvmmsg(CAN)");
+  }
+  for (int i = 0; i < n; ++i) {
+    for (cmsghdr* c = CMSG_FIRSTHDR(&msgs[i].msg_hdr); c; c = CMSG_NXTHDR(&msgs[i].msg_hdr, c))
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) std::memcpy(&dropped_, CMSG_DATA(c), sizeof dropped_);
+    if (auto r = convert(frames[i], static_cast<ssize_t>(msgs[i].msg_len))) out.push_back(std::move(*r));
+  }
+  return static_cast<std::size_t>(n);
+}
+
 std::optional<CanSocket::Received> CanSocket::receive() {
   ::can_frame k{};
   iovec iov{&k, sizeof k};
@@ -108,15 +150,7 @@ std::optional<CanSocket::Received> CanSocket::receive() {
   for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c))
     if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL)
       std::memcpy(&dropped_, CMSG_DATA(c), sizeof dropped_);
-  if (n != static_cast<ssize_t>(sizeof k)) return std::nullopt;  // not a classic frame
-  if (k.can_id & CAN_ERR_FLAG) return Error{decode_error_frame(k)};
-  CanFrame f;
-  f.id = k.can_id & (k.can_id & CAN_EFF_FLAG ? CAN_EFF_MASK : CAN_SFF_MASK);
-  f.rtr = k.can_id & CAN_RTR_FLAG;
-  f.len = k.len > 8 ? 8 : k.len;
-  std::memcpy(f.data.data(), k.data, 8);
-  if (k.can_id & CAN_EFF_FLAG) f.id |= 0x80000000u;  // 29-bit: never matches a CANopen COB-ID
-  return f;
+  return convert(k, n);
 }
 
 }  // namespace advee::canopen

@@ -9,6 +9,7 @@
 #include <deque>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "advee/canopen/event_loop.hpp"
 #include "advee/canopen/socketcan.hpp"
@@ -44,6 +45,7 @@ class CanPort {
 
  private:
   void on_readable();
+  void dispatch(const CanSocket::Received& r);
   void flush();
 
   EventLoop& loop_;
@@ -55,6 +57,7 @@ class CanPort {
   Duration backoff_{};
   CanControllerState state_ = CanControllerState::kErrorActive;
   CanPortStats stats_;
+  std::vector<CanSocket::Received> rx_batch_;
 };
 
 }  // namespace advee::canopen

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "advee/canopen/frame.hpp"
 #include "advee/canopen/unique_fd.hpp"
@@ -51,6 +52,10 @@ class CanSocket {
   using Received = std::variant<CanFrame, Error>;
   // nullopt when nothing is pending (EAGAIN). Throws on real errors.
   std::optional<Received> receive();
+  // Reads up to `max` (at most 64) pending messages with one recvmmsg() and
+  // appends the classic frames and error frames to `out`. Returns how many
+  // messages were read: 0 when nothing is pending, `max` when more may be.
+  std::size_t receive_batch(std::vector<Received>& out, std::size_t max);
 
   int fd() const { return fd_.get(); }
   // Frames the kernel dropped for this socket because its queue was full.
