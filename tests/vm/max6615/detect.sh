@@ -44,14 +44,18 @@ for bad in "0xfd 0x02" "0xfe 0x69" "0xff 0x4e" "0xfe 0x00"; do
 	cleanup_modules
 done
 
-# Binding reads the IDs first and writes nothing.
-stub_load 0x18 && image_load
+# Binding reads the IDs first and writes nothing, even to a chip that a
+# user left in standby (CONFIG bit 7): the driver keeps the chip's settings.
+stub_load 0x18 && image_load && reg_set 0x02 0x98
 trace_setup || { tap_diag "cannot set up i2c tracing"; exit 1; }
+before=$(kmsg_lines)
 trace_run modprobe max6615
 tap_ok "bound for the write check" driver_bound
 tap_is "no SMBus data write while detecting and probing" "$(trace_data_writes)" 0
 first3=$(trace_read_regs | head -3 | tr '\n' ' ')
 tap_is "the first reads are the ID registers" "$first3" "ff fe fd "
+tap_is "standby left as the user set it" "$(reg_get 0x02)" 0x98
+tap_ok "the standby state is reported" sh -c "dmesg | tail -n +$((before + 1)) | grep -q 'standby'"
 trace_teardown
 cleanup_modules
 
