@@ -5,9 +5,9 @@
 # NMT, CiA 402 status and power control, monitor.
 . "$(dirname "$0")/common.inc"
 canopen_setup
-tap_plan 16
+tap_plan 17
 
-start_sim epos -n 3 -p epos || exit 1
+start_sim epos -n 3 -p epos --sdo-abort 6060:00=08000022 || exit 1
 start_sim slow -n 4 -p icla --sdo-delay-ms 800 || exit 1
 ctl() { "$BIN/canopenctl" -i "$IF" "$@"; }
 
@@ -21,6 +21,10 @@ tap_is "missing object: exit 1 with the abort text" "$rc:$out" \
 out=$(ctl write 3 6041 u16 1 2>&1); rc=$?
 tap_is "read-only object refuses a write" "$rc:$out" \
 	"1:canopenctl: write: attempt to write a read-only object (0x06010002)"
+
+out=$(ctl write 3 6060 i8 3 2>&1); rc=$?
+tap_is "injected abort code reaches the tool" "$rc:$out" \
+	"1:canopenctl: write: data cannot be transferred or stored to the application because of the present device state (0x08000022)"
 
 start_candump
 out=$(ctl -t 200 read 4 1000 2>&1); rc=$?

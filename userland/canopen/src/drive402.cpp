@@ -59,8 +59,9 @@ void Drive402::emit(DriveEvent e) {
 }
 
 void Drive402::boot_failed(const std::string& why, std::error_code ec) {
-  std::fprintf(stderr, "%s (node %u): boot failed: %s: %s\n", cfg_.name.c_str(), cfg_.node, why.c_str(),
-               ec.message().c_str());
+  char head[64];
+  std::snprintf(head, sizeof head, "%s (node %u): boot failed: ", cfg_.name.c_str(), cfg_.node);
+  boot_error_ = head + why + ": " + ec.message() + (mismatch_.empty() ? "" : " (" + mismatch_ + ")");
   auto done = std::move(boot_done_);
   boot_done_ = nullptr;
   if (done) done(ec);
@@ -74,8 +75,7 @@ void Drive402::configure_pdo(PdoKind kind, unsigned number, const std::vector<Pd
     PdoMapping wanted = m;
     if (m.entries != need) {
       if (!cfg_.remap_if_different) {
-        std::fprintf(stderr, "%s: device has %s, driver needs%s\n", cfg_.name.c_str(), to_string(m).c_str(),
-                     describe_need(kind, number, need).c_str());
+        mismatch_ = "device has " + to_string(m) + ", driver needs" + describe_need(kind, number, need);
         return done(make_error_code(AxisError::kPdoMismatch), m);
       }
       wanted.entries = need;
@@ -94,6 +94,8 @@ void Drive402::configure_pdo(PdoKind kind, unsigned number, const std::vector<Pd
 
 void Drive402::boot(Done done) {
   boot_done_ = std::move(done);
+  boot_error_.clear();
+  mismatch_.clear();
   booted_ = false;
   if (status_sub_) {
     master_.unsubscribe(status_sub_);

@@ -114,6 +114,9 @@ TEST_F(DriveTest, BootFailsClearlyWhenTheMappingIsNotWhatTheDriverNeeds) {
   auto epos = make(c);
   EXPECT_EQ(wait([&](auto d) { epos->boot(d); }), make_error_code(AxisError::kPdoMismatch));
   EXPECT_FALSE(epos->booted());
+  EXPECT_EQ(epos->boot_error(),
+            "epos (node 1): boot failed: control RPDO: device PDO mapping is not what the driver needs "
+            "(device has RPDO2 0x301 type 255: 6040:00/16 6060:00/8, driver needs 6040:00/16 60FF:00/32)");
   EXPECT_EQ(epos_sim.nmt_state(), NmtState::kPreOperational) << "not started with a wrong mapping";
 }
 

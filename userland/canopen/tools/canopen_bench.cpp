@@ -4,6 +4,8 @@
 //   sdo   -n NODE -d SECONDS   expedited SDO uploads back to back: round trips/s
 //   pdo   -n NODE -c COUNT     RPDO1 controlword -> TPDO1 statusword latency percentiles
 //   flood -d SECONDS           receive everything (cangen runs alongside): CPU share, drops
+//   engine -d SECONDS          master + simulated drive in one process on the virtual bus:
+//                              what the protocol code alone allows (no sockets, no scheduler)
 #include <getopt.h>
 #include <sys/resource.h>
 
@@ -16,6 +18,8 @@
 
 #include "advee/canopen/cia402.hpp"
 #include "advee/canopen/runtime.hpp"
+#include "advee/canopen/sim/drive_sim.hpp"
+#include "advee/canopen/virtual_bus.hpp"
 
 using namespace advee::canopen;
 using namespace std::chrono_literals;
@@ -80,6 +84,32 @@ int main(int argc, char** argv) {
   }
   const std::string what = argv[optind];
   const auto n = static_cast<std::uint8_t>(node);
+
+  if (what == "engine") {
+    VirtualBus bus;
+    std::unique_ptr<Master> master;
+    std::unique_ptr<sim::SimulatedDrive> drive;
+    const auto mp = bus.attach([&](const CanFrame& f) { master->handle(f); });
+    const auto dp = bus.attach([&](const CanFrame& f) { drive->handle(f); });
+    master = std::make_unique<Master>(MasterConfig{}, bus.sender(mp), system_monotonic_clock());
+    drive = std::make_unique<sim::SimulatedDrive>(sim::DriveSimConfig{n, sim::DriveProfile::kEpos}, bus.sender(dp),
+                                                  system_monotonic_clock());
+    drive->power_on();
+    bus.deliver();
+    std::uint64_t done = 0;
+    const TimePoint start = SteadyClock::now(), end = start + std::chrono::seconds(seconds);
+    const double cpu0 = cpu_seconds();
+    while (SteadyClock::now() < end) {
+      for (int i = 0; i < 1000; ++i) {
+        master->sdo(n).upload(0x6041, 0, [&](const SdoResult& r) { done += r.ok(); });
+        bus.deliver();
+      }
+    }
+    const double s = std::chrono::duration<double>(SteadyClock::now() - start).count();
+    std::printf("engine_sdo_round_trips_per_s %.0f\nengine_cpu_us_per_round_trip %.2f\n", done / s,
+                (cpu_seconds() - cpu0) * 1e6 / std::max<double>(static_cast<double>(done), 1));
+    return 0;
+  }
 
   try {
     EventLoop loop;

@@ -231,8 +231,20 @@ int main(int argc, char** argv) {
     epos.drive().on_event(events);
     icla.drive().on_event(events);
 
-    auto boot_epos = [&] { script.then("boot EPOS (node " + std::to_string(epos_node) + ")", [&](auto d) { epos.boot(d); }); };
-    auto boot_icla = [&] { script.then("boot IclA (node " + std::to_string(icla_node) + ")", [&](auto d) { icla.boot(d); }); };
+    auto with_error = [](Drive402& drive, Script::Done d) {
+      return [&drive, d](std::error_code e) {
+        if (e && !drive.boot_error().empty()) std::printf("# %s\n", drive.boot_error().c_str());
+        d(e);
+      };
+    };
+    auto boot_epos = [&] {
+      script.then("boot EPOS (node " + std::to_string(epos_node) + ")",
+                  [&](auto d) { epos.boot(with_error(epos.drive(), d)); });
+    };
+    auto boot_icla = [&] {
+      script.then("boot IclA (node " + std::to_string(icla_node) + ")",
+                  [&](auto d) { icla.boot(with_error(icla.drive(), d)); });
+    };
     auto finish = [&](bool ok) {
       if (!ok || (scenario != "hb-loss" && scenario != "cmd-timeout" && scenario != "stream")) {
         exit_code = ok ? 0 : 1;

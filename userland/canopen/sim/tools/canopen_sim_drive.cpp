@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 
 #include "advee/canopen/can_port.hpp"
@@ -32,6 +33,7 @@ void usage(FILE* out) {
       "      --refuse-transition-16  quick stop active stays on enable operation\n"
       "      --refuse-mode-while-halt  0x6061 ignores 0x6060 while halt is set\n"
       "      --no-home-switch        homing ends in a homing error\n"
+      "      --sdo-abort IDX:SUB=CODE  answer SDO access to the object with this abort code (hex)\n"
       "  -h, --help\n"
       "signals: SIGUSR1 inject EMCY 0x4210 + fault, SIGUSR2 toggle heartbeat silence\n",
       out);
@@ -44,7 +46,8 @@ int main(int argc, char** argv) {
   sim::DriveSimConfig cfg;
   sim::DriveFaults faults;
   int sdo_delay_ms = 0;
-  enum { kHome = 256, kStep, kDelay, kT16, kHalt, kNoSwitch };
+  std::map<std::pair<std::uint16_t, std::uint8_t>, SdoAbort> aborts;
+  enum { kHome = 256, kStep, kDelay, kT16, kHalt, kNoSwitch, kAbort };
   static const option opts[] = {{"interface", required_argument, nullptr, 'i'},
                                 {"node", required_argument, nullptr, 'n'},
                                 {"profile", required_argument, nullptr, 'p'},
@@ -54,6 +57,7 @@ int main(int argc, char** argv) {
                                 {"refuse-transition-16", no_argument, nullptr, kT16},
                                 {"refuse-mode-while-halt", no_argument, nullptr, kHalt},
                                 {"no-home-switch", no_argument, nullptr, kNoSwitch},
+                                {"sdo-abort", required_argument, nullptr, kAbort},
                                 {"help", no_argument, nullptr, 'h'},
                                 {nullptr, 0, nullptr, 0}};
   for (int c; (c = getopt_long(argc, argv, "i:n:p:h", opts, nullptr)) != -1;) {
@@ -85,6 +89,15 @@ int main(int argc, char** argv) {
       case kT16: faults.refuse_transition_16 = true; break;
       case kHalt: faults.refuse_mode_change_while_halt = true; break;
       case kNoSwitch: faults.homing_switch_missing = true; break;
+      case kAbort: {
+        unsigned idx, sub, code;
+        if (std::sscanf(optarg, "%x:%x=%x", &idx, &sub, &code) != 3 || idx > 0xFFFF || sub > 0xFF) {
+          std::fprintf(stderr, "canopen-sim-drive: --sdo-abort wants INDEX:SUB=CODE in hex\n");
+          return 2;
+        }
+        aborts[{static_cast<std::uint16_t>(idx), static_cast<std::uint8_t>(sub)}] = static_cast<SdoAbort>(code);
+        break;
+      }
       case 'h': usage(stdout); return 0;
       default: usage(stderr); return 2;
     }
@@ -98,6 +111,7 @@ int main(int argc, char** argv) {
     drive = std::make_unique<sim::SimulatedDrive>(cfg, port.sender(), system_monotonic_clock());
     drive->faults() = faults;
     drive->sdo().faults().response_delay = std::chrono::milliseconds(sdo_delay_ms);
+    drive->sdo().faults().abort_on = aborts;
 
     auto state = drive->state();
     auto nmt = drive->nmt_state();

@@ -60,6 +60,10 @@ class Drive402 final : public TimedService {
 
   void boot(Done done);
   bool booted() const { return booted_; }
+  // Why the last boot failed, e.g. "epos (node 1): boot failed: control RPDO:
+  // device PDO mapping is not what the driver needs (device has RPDO2 0x301
+  // type 255: 6040:00/16 6060:00/8, driver needs 6040:00/16 60FF:00/32)".
+  const std::string& boot_error() const { return boot_error_; }
 
   void enable(Done done) { axis_.request(cia402::State::kOperationEnabled, std::move(done)); }
   void disable(Done done) { axis_.request(cia402::State::kSwitchOnDisabled, std::move(done)); }
@@ -115,6 +119,8 @@ class Drive402 final : public TimedService {
   Master::ListenerId status_sub_ = 0;
   bool booted_ = false;
   Done boot_done_;
+  std::string boot_error_;
+  std::string mismatch_;
   std::optional<cia402::Mode> mode_;
   Motion motion_ = Motion::kNone;
   Done motion_done_;
