@@ -70,7 +70,7 @@ stub_load() {
 		I2C_DEV_LOADED_BY_US=1
 	fi
 	# devtmpfs creates the node asynchronously
-	for _i in $(seq 50); do
+	for _i in $(seq 200); do
 		[ -c "/dev/i2c-$STUB_BUS" ] && return 0
 		sleep 0.1
 	done
