@@ -95,11 +95,14 @@
  * the chip on the BR-FAN1 board, 3P = third-party code that agrees.
  */
 
-/* RPM = 58500 / count at 2 pulses per revolution (3P, three sources agree) */
+/*
+ * RPM = 58500 / count at 2 pulses per revolution (3P, three sources agree;
+ * the application note read literally gives twice that)
+ */
 #define MAX6615_TACH_RPM_FACTOR		58500
 /* Tach value FFh: fan stalled or not measured yet (DS) */
 #define MAX6615_TACH_STALLED		0xff
-/* PWM_FREQ (14h) bits 7..6 select the low frequencies (3P) */
+/* PWM_FREQ (14h) bits 7..6: 20/33/50/100 Hz (3P; 33 Hz = POR 40h per DS) */
 #define MAX6615_PWM_FREQ_LOW_MASK	GENMASK(7, 6)
 static const unsigned int max6615_pwm_freq_low_hz[] = { 20, 33, 50, 100 };
 /* PWM_FREQ (14h) bit 5 selects 35 kHz for logic-level PWM inputs (3P) */
