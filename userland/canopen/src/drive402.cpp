@@ -33,11 +33,11 @@ Drive402::Drive402(Master& master, DriveConfig cfg)
       axis_(cfg_.axis, [&master] { return master.now(); }, [this](std::uint16_t) { send_control(); }) {
   master_.attach(this);
   master_.sdo(cfg_.node).set_timeout(cfg_.sdo_timeout);
-  master_.add_emcy_listener([this](const Emcy& e) {
+  emcy_listener_ = master_.add_emcy_listener([this](const Emcy& e) {
     if (e.node != cfg_.node) return;
     emit({DriveEventKind::kEmcy, cfg_.node, e.code, to_string(e)});
   });
-  master_.add_heartbeat_listener([this](const HeartbeatUpdate& u) {
+  hb_listener_ = master_.add_heartbeat_listener([this](const HeartbeatUpdate& u) {
     if (u.node != cfg_.node) return;
     if (u.event == HeartbeatEvent::kLost) emit({DriveEventKind::kHeartbeatLost, cfg_.node, 0, cfg_.name + ": heartbeat lost"});
     if (u.event == HeartbeatEvent::kResumed) emit({DriveEventKind::kHeartbeatResumed, cfg_.node, 0, cfg_.name + ": heartbeat resumed"});
@@ -51,6 +51,8 @@ Drive402::Drive402(Master& master, DriveConfig cfg)
 
 Drive402::~Drive402() {
   master_.detach(this);
+  master_.remove_listener(emcy_listener_);
+  master_.remove_listener(hb_listener_);
   if (status_sub_) master_.unsubscribe(status_sub_);
 }
 

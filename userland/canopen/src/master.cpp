@@ -23,7 +23,8 @@ void Master::handle(const CanFrame& f) {
   } else if (hb_consumer_.handle(f)) {
     return;
   } else if (auto e = decode_emcy(f)) {
-    for (auto& cb : emcy_listeners_) cb(*e);
+    auto listeners = emcy_listeners_;  // a listener may remove itself
+    for (auto& [id, cb] : listeners) cb(*e);
     return;
   }
   auto it = pdo_listeners_.find(f.id);
@@ -42,7 +43,8 @@ void Master::on_heartbeat(const HeartbeatUpdate& u) {
     auto it = sdo_.find(u.node);
     if (it != sdo_.end() && it->second->busy()) it->second->cancel_all(SdoAbort::kGeneral);
   }
-  for (auto& cb : hb_listeners_) cb(u);
+  auto listeners = hb_listeners_;  // a listener may remove itself
+  for (auto& [id, cb] : listeners) cb(u);
 }
 
 void Master::poll() {
@@ -78,11 +80,21 @@ SdoClient& Master::sdo(std::uint8_t node) {
 
 void Master::send_time(std::chrono::system_clock::time_point t) { send_(time_of_day_frame(t)); }
 
-void Master::add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb) {
-  hb_listeners_.push_back(std::move(cb));
+Master::ListenerId Master::add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb) {
+  hb_listeners_.emplace_back(next_id_, std::move(cb));
+  return next_id_++;
 }
 
-void Master::add_emcy_listener(std::function<void(const Emcy&)> cb) { emcy_listeners_.push_back(std::move(cb)); }
+Master::ListenerId Master::add_emcy_listener(std::function<void(const Emcy&)> cb) {
+  emcy_listeners_.emplace_back(next_id_, std::move(cb));
+  return next_id_++;
+}
+
+void Master::remove_listener(ListenerId id) {
+  std::erase_if(hb_listeners_, [id](const auto& l) { return l.first == id; });
+  std::erase_if(emcy_listeners_, [id](const auto& l) { return l.first == id; });
+  unsubscribe(id);
+}
 
 Master::ListenerId Master::subscribe(std::uint32_t can_id, FrameListener cb) {
   const ListenerId id = next_id_++;

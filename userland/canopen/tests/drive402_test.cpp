@@ -248,6 +248,17 @@ TEST_F(DriveTest, RebootOfADriveIsReportedAndItMustBootAgain) {
   ASSERT_FALSE(wait([&](auto d) { epos->boot(d); }));
 }
 
+TEST_F(DriveTest, DestroyedDriverNoLongerListens) {
+  auto epos = make(epos_config());
+  ASSERT_FALSE(wait([&](auto d) { epos->boot(d); }));
+  epos.reset();
+  // Under ASan a dangling listener would be a use-after-free here.
+  epos_sim.inject_fault(0x4210);
+  epos_sim.faults().heartbeat_silent = true;
+  run_for(500ms);
+  EXPECT_TRUE(events.empty());
+}
+
 TEST_F(DriveTest, MotionWatchdogQuickStopsAfterOneSecondWithoutCommands) {
   auto epos = make(epos_config());
   ASSERT_FALSE(wait([&](auto d) { epos->boot(d); }));

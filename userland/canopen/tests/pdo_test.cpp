@@ -186,6 +186,17 @@ TEST_F(PdoOnDriveTest, SegmentedUploadOfTheDeviceName) {
   EXPECT_EQ(name, "EPOS 70/10 (simulated)");
 }
 
+TEST_F(PdoOnDriveTest, SegmentedDownloadThenUploadRoundTrips) {
+  const std::string text = "steering axis, homed on the left switch";  // 40 bytes: 6 segments
+  std::optional<SdoResult> w, r;
+  master.sdo(1).download(0x2000, 0, {text.begin(), text.end()}, [&](const SdoResult& x) { w = x; });
+  master.sdo(1).upload(0x2000, 0, [&](const SdoResult& x) { r = x; });
+  settle();
+  ASSERT_TRUE(w && r);
+  EXPECT_TRUE(w->ok()) << w->error().message();
+  EXPECT_EQ(std::string(r->data.begin(), r->data.end()), text);
+}
+
 TEST_F(PdoOnDriveTest, SlowServerTimesOutAndTheAbortResetsIt) {
   drive.sdo().faults().response_delay = 800ms;  // longer than the 500 ms SDO timeout
   std::optional<SdoResult> r;

@@ -96,6 +96,8 @@ void SimulatedDrive::build_dictionary() {
     for (std::uint8_t s = 1; s <= kMaxMapped; ++s)
       od_.add<std::uint32_t>(tm, s, s <= tp[n - 1].map.size() ? tp[n - 1].map[s - 1] : 0);
   }
+  // Vendor scratch domain: lets tests exercise segmented download + upload.
+  od_.add_string(0x2000, 0, "", Access::kReadWrite);
   od_.add<std::int16_t>(0x6007, 0, 3);  // abort connection option: quick stop
   od_.add<std::uint16_t>(0x603F, 0, 0, A::kReadOnly, true);
   od_.add<std::uint16_t>(0x6040, 0, 0, A::kReadWrite, true);

@@ -117,6 +117,8 @@ class Drive402 final : public TimedService {
   CanFrame control_frame_;
   std::optional<CanFrame> last_status_;
   Master::ListenerId status_sub_ = 0;
+  Master::ListenerId emcy_listener_ = 0;
+  Master::ListenerId hb_listener_ = 0;
   bool booted_ = false;
   Done boot_done_;
   std::string boot_error_;

@@ -63,8 +63,10 @@ class Master {
   SyncProducer& sync() { return sync_; }
   void send_time(std::chrono::system_clock::time_point t);
 
-  void add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb);
-  void add_emcy_listener(std::function<void(const Emcy&)> cb);
+  // Listeners are removed with remove_listener(id) before their owner dies.
+  ListenerId add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb);
+  ListenerId add_emcy_listener(std::function<void(const Emcy&)> cb);
+  void remove_listener(ListenerId id);
   // Frames with this CAN-ID (a device's TPDO) go to cb.
   ListenerId subscribe(std::uint32_t can_id, FrameListener cb);
   void unsubscribe(ListenerId id);
@@ -91,8 +93,8 @@ class Master {
   HeartbeatConsumer hb_consumer_;
   HeartbeatProducer hb_producer_;
   SyncProducer sync_;
-  std::vector<std::function<void(const HeartbeatUpdate&)>> hb_listeners_;
-  std::vector<std::function<void(const Emcy&)>> emcy_listeners_;
+  std::vector<std::pair<ListenerId, std::function<void(const HeartbeatUpdate&)>>> hb_listeners_;
+  std::vector<std::pair<ListenerId, std::function<void(const Emcy&)>>> emcy_listeners_;
   struct Subscription {
     ListenerId id;
     FrameListener cb;
