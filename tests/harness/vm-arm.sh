@@ -8,7 +8,7 @@
 # modules they depend on) and the statically linked test programs of the
 # suites marked portable=1; results come back over the serial console.
 #
-# usage: vm-arm.sh [--test SUITE[/PROGRAM]] [--shell]
+# usage: vm-arm.sh [--test SUITE[/PROGRAM]] [--shell] [--lane NAME]
 # Environment: VMTEST_VERBOSE=1 streams the guest console.
 set -euo pipefail
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
@@ -19,6 +19,7 @@ tests=() shell=0 lane=armhf
 while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=("$2"); shift 2 ;;
+	--lane) lane=$2; shift 2 ;;
 	--shell) shell=1; shift ;;
 	-h|--help) sed -n '3,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-arm.sh: unknown argument $1 (see --help)" ;;
@@ -33,6 +34,14 @@ modules=$BUILD/kmod/armhf/modules.list
 [ -r "$modules" ] || die "no armhf module list (run: scripts/build-kmod.sh armhf)"
 
 vmdir=$BUILD/vm/$lane
+mkdir -p "$vmdir"
+# One run per lane directory at a time: a second run waits instead of
+# deleting the first one's results (use --lane NAME to run side by side).
+exec 9>"$vmdir/.lock"
+if ! flock -n 9; then
+	say "another run uses $vmdir; waiting for it"
+	flock 9
+fi
 results=$vmdir/results
 rm -rf "$vmdir/initramfs" "$results"
 mkdir -p "$results"

@@ -50,6 +50,13 @@ case $TOP in
 esac
 vmdir=$BUILD/vm/$lane
 mkdir -p "$vmdir"
+# One run per lane directory at a time: a second run waits instead of
+# deleting the first one's results (use --lane NAME to run side by side).
+exec 9>"$vmdir/.lock"
+if ! flock -n 9; then
+	say "another run uses $vmdir; waiting for it"
+	flock 9
+fi
 
 # --- initramfs: busybox + virtio/9p modules + /init, rebuilt when inputs change ---
 initramfs=$vmdir/initramfs-$kver.cpio.gz
