@@ -10,6 +10,7 @@ constexpr auto kFirstBackoff = std::chrono::milliseconds(1);
 constexpr auto kMaxBackoff = std::chrono::milliseconds(32);
 constexpr std::size_t kMaxReadsPerWakeup = 256;  // let timers run under a flood
 constexpr std::size_t kRxBatch = 64;             // frames per recvmmsg()
+constexpr std::size_t kMaxTxQueue = 4096;        // ~0.5 s of a saturated 1 Mbit/s bus
 }  // namespace
 
 CanPort::CanPort(EventLoop& loop, CanSocket socket, FrameHandler on_frame, ErrorHandler on_error)
@@ -27,6 +28,11 @@ CanPort::CanPort(EventLoop& loop, CanSocket socket, FrameHandler on_frame, Error
 CanPort::~CanPort() { loop_.remove_fd(socket_.fd()); }
 
 void CanPort::send(const CanFrame& f) {
+  if (txq_.size() >= kMaxTxQueue) {
+    // Bus-off or a stuck queue: the oldest frame is the stalest command.
+    txq_.pop_front();
+    ++stats_.tx_dropped;
+  }
   txq_.push_back(f);
   if (!retry_at_) flush();
 }

@@ -2,7 +2,8 @@
 // A CanSocket on an EventLoop: reads every pending frame on readiness, keeps
 // a transmit queue that backs off on ENOBUFS (1 ms doubling to 32 ms) instead
 // of dropping, holds transmission while the controller is bus-off (until the
-// kernel's restart-ms restarts it or any frame is received), and counts.
+// kernel's restart-ms restarts it or any frame is received), and counts. The
+// queue is bounded (4096 frames); when full the oldest frame goes.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +22,7 @@ struct CanPortStats {
   std::uint64_t tx_frames = 0;
   std::uint64_t tx_retries = 0;  // ENOBUFS back-offs
   std::uint64_t tx_failed = 0;
+  std::uint64_t tx_dropped = 0;  // oldest frames dropped from a full transmit queue
   std::uint64_t error_frames = 0;
   std::uint32_t rx_dropped = 0;  // kernel drops for this socket (SO_RXQ_OVFL)
 };
