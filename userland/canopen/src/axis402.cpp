@@ -79,7 +79,15 @@ void Axis402::finish(std::error_code ec) {
 }
 
 void Axis402::advance() {
-  if (!target_ || !sw_) return;
+  if (!target_) return;
+  if (!sw_) {
+    // No statusword yet (TPDO not flowing): wait one transition timeout for it.
+    if (!step_) {
+      step_ = cia402::Step{cia402::Command::kDisableVoltage, 0, State::kNotReadyToSwitchOn};
+      step_deadline_ = now_() + cfg_.transition_timeout;
+    }
+    return;
+  }
   const State s = state();
   if (s == *target_ || (*target_ == State::kQuickStopActive && s == State::kSwitchOnDisabled))
     return finish({});

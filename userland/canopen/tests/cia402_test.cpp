@@ -223,6 +223,19 @@ TEST_F(AxisTest, DriveThatDoesNotRespondTimesOutPerAxis) {
   EXPECT_EQ(words, std::vector<std::uint16_t>{0x0006});
 }
 
+TEST_F(AxisTest, NoStatuswordAtAllTimesOutInsteadOfWaitingForever) {
+  axis = std::make_unique<Axis402>(cfg, clock.fn(), [this](std::uint16_t w) { words.push_back(w); });
+  axis->request(State::kOperationEnabled, [this](std::error_code ec) { result = ec; });
+  clock.advance(199ms);
+  axis->poll();
+  EXPECT_FALSE(result);
+  clock.advance(1ms);
+  axis->poll();
+  ASSERT_TRUE(result);
+  EXPECT_EQ(*result, make_error_code(AxisError::kTransitionTimeout));
+  EXPECT_TRUE(words.empty()) << "nothing is commanded blind";
+}
+
 TEST_F(AxisTest, NewRequestCancelsThePreviousOne) {
   std::optional<std::error_code> first;
   axis = std::make_unique<Axis402>(cfg, clock.fn(), [](std::uint16_t) {});
