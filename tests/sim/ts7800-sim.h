@@ -30,6 +30,9 @@
  */
 #define SIM_WIRE_WAKE_WORDS	64
 #define SIM_WIRE_WAKE_ROOM	(SIM_WIRE_WORDS / 4)
+/* Longest slice of line time simulated per timer expiry (ts7800-sim-uart.c). */
+#define SIM_SLICE_NS		1000000
+#define SIM_SLICE_MAX		16U
 /* RX FIFO entry flag (model internal): the entry is a received break. */
 #define SIM_RX_BREAK		BIT(15)
 
@@ -68,12 +71,14 @@ struct sim_uart {
 	struct sim_ring rx;
 	bool oerr;
 	bool rx_busy;
+	unsigned int rx_nslice;	/* characters completing at the next expiry */
 	ktime_t rx_line_free;
 	struct hrtimer rx_timer;
 
 	/* transmitter: DATA writes -> tx FIFO -> shift (timed) -> line_out */
 	struct sim_ring tx;
-	u16 tx_shift;
+	u16 tx_shift[SIM_SLICE_MAX];	/* the slice on the line */
+	unsigned int tx_nshift;
 	bool tx_busy;
 	bool tx_event;		/* TX FIFO ran empty since the last STAT read */
 	ktime_t tx_line_free;
