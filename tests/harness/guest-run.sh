@@ -36,6 +36,10 @@ exec >/dev/console 2>&1
 BAD_KMSG='BUG:|WARNING:|Oops|general protection|RIP:|soft lockup|hard LOCKUP|hung task|blocked for more than|detected stalls|UBSAN:|kernel BUG|Kernel panic|unreferenced object'
 
 tap() { echo "$*" >>"$R/tap.txt"; echo "$*"; }
+# phase NAME: a timestamped line in phases.txt (and on the console), to see
+# where a run spends its time
+phase() { read -r up _ </proc/uptime; echo "[$up s] $*" | tee -a "$R/phases.txt"; }
+phase "runner started"
 n=0
 ok_point() {	# ok_point STATUS NAME [REASON]
 	n=$((n + 1))
@@ -78,8 +82,8 @@ echo 1 >/proc/sys/kernel/printk_ratelimit 2>/dev/null
 modnames=
 while read -r ko; do
 	[ -n "$ko" ] || continue
-	m=$(basename "$ko" .ko)
-	modnames="$modnames $m"
+	m=${ko##*/}
+	modnames="$modnames ${m%.ko}"
 done <"$VMTEST_MODULES"
 
 if [ "$VMTEST_INSTALL_MODULES" = 1 ]; then
@@ -99,30 +103,46 @@ if [ "${VMTEST_SHELL:-0}" = 1 ]; then
 	sleep 10
 fi
 
+phase "runner up"
 ntests=$(grep -c . "$VMTEST_TESTLIST")
 nmods=$(echo $modnames | wc -w)
 tap "TAP version 13"
 tap "1..$((nmods + ntests + 1))"
 tap "# lane $VMTEST_LANE, kernel $(uname -r), $nmods module(s), $ntests program(s)"
 
-# Every module loads and unloads once on its own, before any test uses it.
-for m in $modnames; do
-	echo "module $m" >"$R/current"
+# Every module loads and unloads once before any test uses it. All of them in
+# one modprobe call each way first (each process costs under TCG); only when
+# that fails, one by one, so that the point names the culprit.
+module_cycle() {	# module_cycle MODULE...: sets $why (empty: clean)
 	why=
-	if ! out=$(modprobe "$m" 2>&1); then
+	if ! out=$(modprobe -a "$@" 2>&1); then
 		why="modprobe: $(echo "$out" | tail -1)"
-	elif ! out=$(modprobe -r "$m" 2>&1); then
-		why="modprobe -r: $(echo "$out" | tail -1)"
+	fi
+	if ! out=$(modprobe -r -a "$@" 2>&1); then
+		why="${why:+$why; }modprobe -r: $(echo "$out" | tail -1)"
 	fi
 	kmsg_check
 	[ -n "$bad" ] && why="${why:+$why; }dmesg: $(echo "$bad" | head -1)"
-	if [ -n "$why" ]; then
-		ok_point fail "module $m loads and unloads" "$why"
-	else
-		ok_point ok "module $m loads and unloads"
-	fi
-done
+}
+phase "module load/unload cycle"
+echo "modules" >"$R/current"
+# shellcheck disable=SC2086
+[ -n "$modnames" ] && module_cycle $modnames
+if [ -z "$why" ]; then
+	for m in $modnames; do ok_point ok "module $m loads and unloads"; done
+else
+	for m in $modnames; do
+		echo "module $m" >"$R/current"
+		module_cycle "$m"
+		if [ -n "$why" ]; then
+			ok_point fail "module $m loads and unloads" "$why"
+		else
+			ok_point ok "module $m loads and unloads"
+		fi
+	done
+fi
 
+phase "test programs"
 # --- test programs -------------------------------------------------------------
 # run_prog TIMEOUT LOG CMD: run in its own session so that a timeout kills the
 # whole process group; prints "timeout" or the exit status.
@@ -208,12 +228,13 @@ while read -r suite prog path limit; do
 done <"$VMTEST_TESTLIST"
 
 # --- end of run: nothing of ours may stay loaded ---------------------------------
+phase "final unload check"
 echo "unload" >"$R/current"
 left=
-for m in $modnames; do
-	if grep -q "^$(echo "$m" | tr - _) " /proc/modules; then
-		modprobe -r "$m" 2>/dev/null || left="$left $m"
-	fi
+loaded=$(echo "$modnames" | tr - _ | awk 'NR == FNR { for (i = 1; i <= NF; i++) ours[$i] = 1; next }
+	$1 in ours { print $1 }' - /proc/modules)
+for m in $loaded; do
+	modprobe -r "$m" 2>/dev/null || left="$left $m"
 done
 kmsg_check
 if [ -n "$left" ]; then
@@ -224,6 +245,7 @@ else
 	ok_point ok "project modules unload after the suite"
 fi
 
+phase "saving the kernel log"
 dmesg >"$R/dmesg.txt" 2>&1
 if [ "$VMTEST_CONSOLE_RESULTS" = 1 ]; then
 	# No shared file system on this lane: the host reads everything back from
