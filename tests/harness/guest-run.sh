@@ -113,14 +113,32 @@ tap "# lane $VMTEST_LANE, kernel $(uname -r), $nmods module(s), $ntests program(
 # Every module loads and unloads once before any test uses it. All of them in
 # one modprobe call each way first (each process costs under TCG); only when
 # that fails, one by one, so that the point names the culprit.
+# unload_modules MODULE...: unload those that are loaded; sets $left to the
+# ones that stay. kmod takes them all in one call; busybox (ARM) knows no -r -a,
+# and a dependency order the list does not follow needs another pass.
+loaded_modules() {
+	echo "$*" | tr - _ | awk 'NR == FNR { for (i = 1; i <= NF; i++) ours[$i] = 1; next }
+		$1 in ours { print $1 }' - /proc/modules
+}
+unload_modules() {
+	left=$(loaded_modules "$@")
+	[ -z "$left" ] && return
+	# shellcheck disable=SC2086
+	modprobe -r -a $left >/dev/null 2>&1 && { left=; return; }
+	for pass in 1 2 3; do
+		pending=$left left=
+		for m in $pending; do modprobe -r "$m" >/dev/null 2>&1 || left="$left $m"; done
+		[ -z "$left" ] && return
+	done
+	left=$(loaded_modules $left)
+}
 module_cycle() {	# module_cycle MODULE...: sets $why (empty: clean)
 	why=
 	if ! out=$(modprobe -a "$@" 2>&1); then
 		why="modprobe: $(echo "$out" | tail -1)"
 	fi
-	if ! out=$(modprobe -r -a "$@" 2>&1); then
-		why="${why:+$why; }modprobe -r: $(echo "$out" | tail -1)"
-	fi
+	unload_modules "$@"
+	[ -n "$left" ] && why="${why:+$why; }modprobe -r failed for:$left"
 	kmsg_check
 	[ -n "$bad" ] && why="${why:+$why; }dmesg: $(echo "$bad" | head -1)"
 }
@@ -230,12 +248,8 @@ done <"$VMTEST_TESTLIST"
 # --- end of run: nothing of ours may stay loaded ---------------------------------
 phase "final unload check"
 echo "unload" >"$R/current"
-left=
-loaded=$(echo "$modnames" | tr - _ | awk 'NR == FNR { for (i = 1; i <= NF; i++) ours[$i] = 1; next }
-	$1 in ours { print $1 }' - /proc/modules)
-for m in $loaded; do
-	modprobe -r "$m" 2>/dev/null || left="$left $m"
-done
+# shellcheck disable=SC2086
+unload_modules $modnames
 kmsg_check
 if [ -n "$left" ]; then
 	ok_point fail "project modules unload after the suite" "still loaded:$left"

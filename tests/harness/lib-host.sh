@@ -49,6 +49,34 @@ list_tests() {
 	done
 }
 
+# stage_modules KVER KMODDIR MODULES OUT: OUT/lib/modules/KVER with our
+# modules under extra/, the kernel's own tree linked as kernel/, and the
+# output of depmod for both (the guest would need a minute for that depmod).
+stage_modules() {
+	local kver=$1 kmoddir=$2 modules=$3 out=$4 ko
+	rm -rf "$out"
+	mkdir -p "$out/lib/modules/$kver/extra"
+	ln -s "$kmoddir/kernel" "$out/lib/modules/$kver/kernel"
+	cp "$kmoddir"/modules.{order,builtin,builtin.modinfo} "$out/lib/modules/$kver/"
+	while read -r ko; do cp "$ko" "$out/lib/modules/$kver/extra/"; done <"$modules"
+	depmod -b "$out" "$kver" || die "depmod of the project's modules for $kver failed"
+}
+
+# boot_vm SHELL ALLOWANCE RESULTS CONSOLELOG APPEND QEMU-ARGS...: an
+# interactive guest shell (SHELL=1; does not return) or the timed test run
+# (ALLOWANCE: seconds for boot and module checks on top of the test timeouts).
+boot_vm() {
+	local shell=$1 allowance=$2 results=$3 log=$4 append=$5 budget
+	shift 5
+	if [ "$shell" = 1 ]; then
+		say "interactive guest shell; leave with 'exit' (or Ctrl-a x)"
+		exec "$@" -append "$append"
+	fi
+	budget=$(vm_time_budget "$results/tests.list" "$results/modules.list" "$allowance")
+	say "booting $(basename "$1") under TCG: $(grep -c . "$results/tests.list") program(s), time budget ${budget}s"
+	run_qemu "$budget" "$log" "$@" -append "$append"
+}
+
 # vm_time_budget TESTLIST MODULELIST BOOT: seconds the whole VM run may take.
 vm_time_budget() {
 	local sum nmods

@@ -53,12 +53,7 @@ cp "$TOP/tests/harness/guest-run.sh" "$stage/vmtest/"
 
 # Modules: ours under extra/, plus every in-tree module they need, then depmod.
 full=$vmdir/modtree
-rm -rf "$full"
-mkdir -p "$full/lib/modules/$kver/extra"
-ln -s "$root/lib/modules/$kver/kernel" "$full/lib/modules/$kver/kernel"
-cp "$root/lib/modules/$kver"/modules.{order,builtin,builtin.modinfo} "$full/lib/modules/$kver/"
-while read -r ko; do cp "$ko" "$full/lib/modules/$kver/extra/"; done <"$modules"
-depmod -b "$full" "$kver"
+stage_modules "$kver" "$root/lib/modules/$kver" "$modules" "$full"
 mdir=$stage/lib/modules/$kver
 mkdir -p "$mdir"
 cp "$root/lib/modules/$kver"/modules.{order,builtin,builtin.modinfo} "$mdir/"
@@ -101,15 +96,9 @@ initramfs=$vmdir/initramfs.cpio.gz
 qemu=(qemu-system-arm -M virt -cpu cortex-a15 -smp "${VMTEST_SMP:-2}" -m "${VMTEST_MEM:-1024}"
 	-nographic -no-reboot -nic none -kernel "$kernel" -initrd "$initramfs")
 append="console=ttyAMA0 panic=-1 loglevel=5"
-if [ "$shell" = 1 ]; then
-	say "interactive ARM guest shell; leave with 'exit' (or Ctrl-a x)"
-	exec "${qemu[@]}" -append "$append vmtest.shell=1"
-fi
-
-budget=$(vm_time_budget "$results/tests.list" "$results/modules.list" 90)
-say "booting armhf $kver under QEMU TCG: $(grep -c . "$results/tests.list") program(s), time budget ${budget}s"
+[ "$shell" = 1 ] && append="$append vmtest.shell=1"
 start=$(date +%s)
-run_qemu "$budget" "$vmdir/console.log" "${qemu[@]}" -append "$append"
+boot_vm "$shell" 90 "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
 
 # Rebuild the result files from the console.
 console=$vmdir/console.log

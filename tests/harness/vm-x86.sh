@@ -81,12 +81,7 @@ fi
 # depmod runs here (about 1 s) instead of in the guest (over a minute under
 # TCG on 9p); the guest overlays this tree on /lib/modules/RELEASE.
 modroot=$vmdir/modroot
-rm -rf "$modroot"
-mkdir -p "$modroot/lib/modules/$kver/extra"
-ln -s "/lib/modules/$kver/kernel" "$modroot/lib/modules/$kver/kernel"
-cp "/lib/modules/$kver"/modules.{order,builtin,builtin.modinfo} "$modroot/lib/modules/$kver/"
-while read -r ko; do cp "$ko" "$modroot/lib/modules/$kver/extra/"; done <"$modules"
-depmod -b "$modroot" "$kver" || die "depmod of the project's modules failed"
+stage_modules "$kver" "/lib/modules/$kver" "$modules" "$modroot"
 rm "$modroot/lib/modules/$kver/kernel"
 
 # --- the job ---
@@ -124,15 +119,8 @@ qemu=(qemu-system-x86_64 -machine pc -accel tcg -cpu "${VMTEST_CPU:-max}" -smp "
 	-virtfs "local,path=$TOP,mount_tag=repo,security_model=none,readonly=on,multidevs=remap")
 append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.repo=$TOP vmtest.runner=$TOP/tests/harness/guest-run.sh"
 
-if [ "$shell" = 1 ]; then
-	say "interactive guest shell; leave with 'exit' (or Ctrl-a x)"
-	exec "${qemu[@]}" -append "$append"
-fi
-
-budget=$(vm_time_budget "$results/tests.list" "$results/modules.list" 60)
-say "booting $kver under QEMU TCG: $(grep -c . "$results/tests.list") program(s), time budget ${budget}s"
 start=$(date +%s)
-run_qemu "$budget" "$vmdir/console.log" "${qemu[@]}" -append "$append"
+boot_vm "$shell" 60 "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
 if [ -n "$run" ]; then
 	cat "$results"/logs/main.*.log 2>/dev/null
 fi
