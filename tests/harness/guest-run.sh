@@ -13,6 +13,9 @@
 #   VMTEST_INSTALL_MODULES 1: overlay VMTEST_MODROOT (extra/*.ko + depmod output,
 #                          staged by the host) on /lib/modules/$(uname -r);
 #                          0: already installed (ARM initramfs)
+#   VMTEST_MODBASE         optional: the booted kernel's own module tree is
+#                          VMTEST_MODBASE/lib/modules/$(uname -r) (a kernel the
+#                          host has not installed, such as the debug lane's)
 #   VMTEST_TESTLIST        file: "suite program path timeout" per line
 #   VMTEST_CONSOLE_RESULTS 1: also print results.tsv to the console (ARM lane)
 #   VMTEST_SHELL           1: after installing the modules, an interactive shell
@@ -72,6 +75,21 @@ kmsg_check() {
 }
 kmsg_check	# boot messages are not any test's fault
 
+# kmemleak (debug lane): leaks are reported by a scan after the suite. Objects
+# from boot are not any test's fault: report them now and set them aside. An
+# object is reported only when two scans agree, hence scan twice.
+kmemleak=/sys/kernel/debug/kmemleak
+kmemleak_scan() {
+	echo scan >"$kmemleak" && sleep 1 && echo scan >"$kmemleak"
+}
+nleak=0	# TAP points of the leak check: 0 or 1
+if [ -w "$kmemleak" ]; then
+	nleak=1
+	kmemleak_scan && echo clear >"$kmemleak"
+else
+	kmemleak=
+fi
+
 # Shorter detectors than the defaults, so that a hang is named inside the
 # per-program timeout instead of after it.
 [ -w /proc/sys/kernel/hung_task_timeout_secs ] && echo 20 >/proc/sys/kernel/hung_task_timeout_secs
@@ -90,9 +108,15 @@ if [ "$VMTEST_INSTALL_MODULES" = 1 ]; then
 	# The host staged extra/*.ko and the depmod output in VMTEST_MODROOT: put it
 	# over the stock tree (read-only overlay, upper layer first).
 	lower=/lib/modules/$(uname -r)
-	modprobe overlay &&
-		mount -t overlay overlay -o "lowerdir=$VMTEST_MODROOT:$lower" "$lower" ||
-		{ echo "guest-run: cannot install the project's modules"; echo 1 >"$R/install-failed"; }
+	if [ -z "${VMTEST_MODBASE:-}" ]; then
+		modprobe overlay &&
+			mount -t overlay overlay -o "lowerdir=$VMTEST_MODROOT:$lower" "$lower"
+	else
+		# The host's /lib/modules has no directory for this kernel to mount
+		# on: overlay /lib/modules itself, with the kernel's own tree between.
+		modprobe -d "$VMTEST_MODBASE" overlay &&
+			mount -t overlay overlay -o "lowerdir=${VMTEST_MODROOT%/*}:$VMTEST_MODBASE/lib/modules:/lib/modules" /lib/modules
+	fi || { echo "guest-run: cannot install the project's modules"; echo 1 >"$R/install-failed"; }
 fi
 
 if [ "${VMTEST_SHELL:-0}" = 1 ]; then
@@ -107,7 +131,7 @@ phase "runner up"
 ntests=$(grep -c . "$VMTEST_TESTLIST")
 nmods=$(echo $modnames | wc -w)
 tap "TAP version 13"
-tap "1..$((nmods + ntests + 1))"
+tap "1..$((nmods + ntests + 1 + nleak))"
 tap "# lane $VMTEST_LANE, kernel $(uname -r), $nmods module(s), $ntests program(s)"
 
 # Every module loads and unloads once before any test uses it. All of them in
@@ -257,6 +281,33 @@ elif [ -n "$bad" ]; then
 	ok_point fail "project modules unload after the suite" "dmesg: $(echo "$bad" | head -1)"
 else
 	ok_point ok "project modules unload after the suite"
+fi
+
+# Leaks: allocated after boot, referenced by nothing now. Each report is named
+# after the program that was running when the object was allocated (its age
+# against the "vmtest: start" lines of the kernel log).
+if [ -n "$kmemleak" ]; then
+	echo "kmemleak scan" >"$R/current"
+	kmemleak_scan
+	cat "$kmemleak" >"$R/kmemleak.txt" 2>&1
+	if [ -s "$R/kmemleak.txt" ]; then
+		read -r now _ </proc/uptime
+		culprits=$(dmesg | awk -v now="$now" '
+			/vmtest: start / { t = $0; sub(/^\[ */, "", t); sub(/\].*/, "", t); start[++k] = t + 0; name[k] = $NF }
+			END { for (i = 1; i <= k; i++) print start[i], name[i] }' |
+			awk -v now="$now" 'NR == FNR { s[NR] = $1; nm[NR] = $2; k = NR; next }
+			/^unreferenced object/ { obj = $3 }
+			/age [0-9.]+s\)/ {
+				age = $0; sub(/.*age /, "", age); sub(/s\).*/, "", age)
+				born = now - age; who = "module-checks"
+				for (i = 1; i <= k; i++) if (s[i] <= born) who = nm[i]
+				print who
+			}' - "$R/kmemleak.txt" | sort | uniq -c | awk '{ printf "%s%s (%d)", sep, $2, $1; sep = ", " }')
+		ok_point fail "no kernel memory leaks (kmemleak)" "$(grep -c '^unreferenced object' "$R/kmemleak.txt") leak(s), allocated during: $culprits; see kmemleak.txt"
+		sed 's/^/# kmemleak: /' "$R/kmemleak.txt" | head -40 | tee -a "$R/tap.txt"
+	else
+		ok_point ok "no kernel memory leaks (kmemleak)"
+	fi
 fi
 
 phase "saving the kernel log"

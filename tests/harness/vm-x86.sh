@@ -9,13 +9,15 @@
 # the VM test programs (tests/vm/<suite>/) in one boot. See docs/testing.md.
 #
 # usage: vm-x86.sh [--test SUITE[/PROGRAM]] [--shell] [--kver RELEASE]
-#                  [--modules LIST] [--kernel VMLINUZ] [--lane NAME]
+#                  [--modules LIST] [--kernel VMLINUZ] [--lane NAME] [--modroot DIR]
 #   --test     run only this suite, or one program of it (repeatable)
 #   --shell    boot to an interactive shell in the guest instead of testing
 #   --kver     kernel release to boot (default: scripts/kver.sh)
 #   --kernel   kernel image (default: /boot/vmlinuz-RELEASE)
 #   --modules  file listing the .ko files to install (default: build/kmod/x86_64/modules.list)
 #   --lane     name of the lane in results (default x86_64)
+#   --modroot  base of the kernel's installed module tree, DIR/lib/modules/RELEASE
+#              (default: the host's; make modules_install INSTALL_MOD_PATH=DIR)
 #   --run PROG run this one program (path on the host) instead of the suites,
 #              and print its output (used by make demo)
 # Environment: VMTEST_VERBOSE=1 streams the guest console; VMTEST_SMP, VMTEST_MEM.
@@ -25,7 +27,7 @@ TOP=$(cd "$(dirname "$0")/../.." && pwd)
 . "$TOP/scripts/lib.sh"
 . "$TOP/tests/harness/lib-host.sh"
 
-tests=() shell=0 kver= kernel= modules= lane=x86_64 run=
+tests=() shell=0 kver= kernel= modules= lane=x86_64 run= modbase=
 while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=("$2"); shift 2 ;;
@@ -34,8 +36,9 @@ while [ $# -gt 0 ]; do
 	--kernel) kernel=$2; shift 2 ;;
 	--modules) modules=$2; shift 2 ;;
 	--lane) lane=$2; shift 2 ;;
+	--modroot) modbase=$(readlink -f "$2"); shift 2 ;;
 	--run) run=$(readlink -f "$2"); shift 2 ;;
-	-h|--help) sed -n '3,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '3,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-x86.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
@@ -44,6 +47,9 @@ kernel=${kernel:-/boot/vmlinuz-$kver}
 modules=${modules:-$BUILD/kmod/x86_64/modules.list}
 [ -r "$kernel" ] || die "no kernel image $kernel (run: make deps)"
 [ -r "$modules" ] || die "no module list $modules (run: make modules)"
+# The kernel's own modules: the host's /lib/modules, or a tree given by --modroot.
+kmods=$modbase/lib/modules/$kver
+[ -d "$kmods" ] || die "no module tree $kmods for $kver"
 
 case $TOP in
 *[[:space:]]*) die "the repository path must not contain white space (kernel command line): $TOP" ;;
@@ -67,7 +73,8 @@ if [ ! -s "$initramfs" ] || [ "$init_src" -nt "$initramfs" ] || [ "$0" -nt "$ini
 	mkdir -p "$stage"/{bin,mods,proc,sys,dev,newroot}
 	cp /bin/busybox "$stage/bin/busybox"
 	install -m 0755 "$init_src" "$stage/init"
-	for m in virtio_pci 9pnet_virtio 9p; do modprobe -S "$kver" --show-depends "$m"; done |
+	: >"$stage/mods/order"	# stays empty when virtio and 9p are built in
+	for m in virtio_pci 9pnet_virtio 9p; do modprobe ${modbase:+-d "$modbase"} -S "$kver" --show-depends "$m"; done |
 		awk '$1 == "insmod" && !seen[$2]++ { print $2 }' | while read -r ko; do
 		cp "$ko" "$stage/mods/"
 		basename "$ko" >>"$stage/mods/order"
@@ -81,7 +88,7 @@ fi
 # depmod runs here (about 1 s) instead of in the guest (over a minute under
 # TCG on 9p); the guest overlays this tree on /lib/modules/RELEASE.
 modroot=$vmdir/modroot
-stage_modules "$kver" "/lib/modules/$kver" "$modules" "$modroot"
+stage_modules "$kver" "$kmods" "$modules" "$modroot"
 rm "$modroot/lib/modules/$kver/kernel"
 
 # --- the job ---
@@ -105,6 +112,7 @@ VMTEST_RESULTS=/run/vmtest
 VMTEST_MODULES=/run/vmtest/modules.list
 VMTEST_INSTALL_MODULES=1
 VMTEST_MODROOT=$modroot/lib/modules/$kver
+VMTEST_MODBASE=$modbase
 VMTEST_TESTLIST=/run/vmtest/tests.list
 VMTEST_CONSOLE_RESULTS=0
 VMTEST_SHELL=$shell
