@@ -1,0 +1,133 @@
+/* SPDX-License-Identifier: GPL-2.0 WITH Linux-syscall-note */
+/*
+ * n_rs485.h - user API of the n_rs485 line discipline: a 9-bit multidrop
+ * RS-485/EIA-422 bus master on any UART with mark/space parity.
+ *
+ * Attach with TIOCSETD (N_RS485_DEFAULT_LDISC) or "ldattach 29 /dev/ttyX".
+ * Then, on that tty file descriptor:
+ *
+ *   ioctl(RS485_IOC_XFER)   one request/response transaction (struct rs485_xfer)
+ *   read()                  one event frame per call: ADDR INSTR FLAGS LEN DATA
+ *                           (4 + LEN bytes, no CRC); EOVERFLOW if the buffer is
+ *                           shorter than the frame (the frame is then dropped)
+ *   write()                 one request frame ADDR INSTR FLAGS LEN DATA, sent
+ *                           as is (the CRC is appended), no response awaited
+ *   poll()                  EPOLLIN: an event frame waits
+ *
+ * Every structure is made of fixed-size fields with explicit padding, so a
+ * 32-bit program uses the same layout on a 64-bit kernel. Wire format and
+ * outcomes: docs/rs485proto.md.
+ */
+#ifndef _UAPI_LINUX_N_RS485_H
+#define _UAPI_LINUX_N_RS485_H
+
+#include <linux/ioctl.h>
+#include <linux/types.h>
+
+/* N_DEVELOPMENT: the line discipline number reserved for out-of-tree use. */
+#define N_RS485_DEFAULT_LDISC	29
+
+#define RS485_ADDR_BROADCAST	0xff
+#define RS485_MAX_DATA		255
+/* ADDR INSTR FLAGS LEN */
+#define RS485_HEADER_LEN	4
+/* Largest frame read() returns or write() takes (no CRC). */
+#define RS485_MAX_FRAME		(RS485_HEADER_LEN + RS485_MAX_DATA)
+
+/* Request flags (master to slave) */
+#define RS485_REQ_RESEND	0x01	/* send the last response again, do not execute */
+#define RS485_REQ_NOACK		0x02	/* execute, send no response */
+
+/* Response flags (slave to master) */
+#define RS485_RESP_ACK		0x01
+#define RS485_RESP_UNKINSTR	0x02
+#define RS485_RESP_DEVERR	0x04
+#define RS485_RESP_EVENT	0x08
+
+/* One frame without its CRC (the discipline computes and checks it). */
+struct rs485_frame {
+	__u8 addr;
+	__u8 instr;
+	__u8 flags;
+	__u8 len;
+	__u8 data[RS485_MAX_DATA];
+	__u8 pad;			/* 0 */
+};
+
+/* Outcome of a transaction (rs485_xfer.status) */
+enum rs485_status {
+	RS485_OK = 0,		/* response with ACK (or sent, if none expected) */
+	RS485_TIMEOUT = 1,	/* no valid response after all retries */
+	RS485_BADCRC = 2,	/* last attempt's response had a bad CRC */
+	RS485_UNKINSTR = 3,	/* the device does not know the instruction */
+	RS485_DEVERR = 4,	/* the device failed executing it */
+	RS485_ERROR = 5,	/* local failure (UART stuck), interrupted, bad response */
+};
+
+/* Use the bus default (rs485_config) for timeout_us or retries. */
+#define RS485_DEFAULT		0xffffffffU
+
+/* RS485_IOC_XFER argument */
+struct rs485_xfer {
+	struct rs485_frame req;		/* in: flags may hold NOACK only */
+	struct rs485_frame resp;	/* out: the response (if any) */
+	__u32 timeout_us;		/* in: response timeout, or RS485_DEFAULT */
+	__u32 retries;			/* in: retries after a failure, or RS485_DEFAULT */
+	__u32 status;			/* out: enum rs485_status */
+	__u32 attempts;			/* out: requests sent (1 + retries used) */
+};
+
+/* Bus configuration (RS485_IOC_GET_CONFIG / RS485_IOC_SET_CONFIG) */
+struct rs485_config {
+	__u32 baud;			/* line rate, e.g. 115200 */
+	__u32 timeout_us;		/* default response timeout, 100..10000000 */
+	__u32 retries;			/* default retries, 0..16 */
+	__u32 gap_chars;		/* idle characters between frames, 2..255 */
+	__u32 reserved[4];		/* 0 */
+};
+
+/* Statistics since attach (RS485_IOC_GET_STATS) */
+struct rs485_stats {
+	__u64 tx_frames;		/* frames sent (each attempt counts) */
+	__u64 tx_bytes;			/* characters sent, CRC included */
+	__u64 rx_frames;		/* valid frames received */
+	__u64 rx_bytes;			/* characters received (all) */
+	__u64 rx_crc_errors;		/* frames with a bad CRC */
+	__u64 rx_truncated;		/* frames cut short by a new address character */
+	__u64 rx_noise;			/* characters outside any frame */
+	__u64 rx_overruns;		/* TTY_OVERRUN reports */
+	__u64 rx_framing;		/* TTY_FRAME / TTY_BREAK characters */
+	__u64 xfers;			/* transactions started (RS485_IOC_XFER) */
+	__u64 xfers_ok;			/* ...with outcome RS485_OK */
+	__u64 xfers_failed;		/* ...with any other outcome */
+	__u64 timeouts;			/* attempts without a response */
+	__u64 retries;			/* attempts after the first */
+	__u64 events;			/* frames queued for read() */
+	__u64 events_dropped;		/* frames dropped: event queue full */
+	__u64 unexpected;		/* non-event frames no transaction waited for */
+};
+
+/* Per-node error counter (RS485_IOC_GET_NODE / RS485_IOC_RESET_NODE) */
+enum rs485_node_state {
+	RS485_NODE_ACTIVE = 0,		/* counter < 128 */
+	RS485_NODE_PASSIVE = 1,		/* 128 <= counter < 256 */
+	RS485_NODE_OFF = 2,		/* counter >= 256: do not poll it (still served) */
+};
+
+struct rs485_node {
+	__u8 addr;			/* in */
+	__u8 state;			/* out: enum rs485_node_state */
+	__u16 pad;			/* 0 */
+	__u32 errors;			/* out: the error counter */
+};
+
+#define RS485_IOC_MAGIC		0xb5
+#define RS485_IOC_XFER		_IOWR(RS485_IOC_MAGIC, 1, struct rs485_xfer)
+#define RS485_IOC_GET_CONFIG	_IOR(RS485_IOC_MAGIC, 2, struct rs485_config)
+#define RS485_IOC_SET_CONFIG	_IOW(RS485_IOC_MAGIC, 3, struct rs485_config)
+#define RS485_IOC_GET_STATS	_IOR(RS485_IOC_MAGIC, 4, struct rs485_stats)
+#define RS485_IOC_GET_NODE	_IOWR(RS485_IOC_MAGIC, 5, struct rs485_node)
+/* Reset one node's counter to 0 (active); argument: struct rs485_node (addr). */
+#define RS485_IOC_RESET_NODE	_IOW(RS485_IOC_MAGIC, 6, struct rs485_node)
+
+#endif /* _UAPI_LINUX_N_RS485_H */

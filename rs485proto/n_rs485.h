@@ -1,0 +1,141 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * n_rs485.h - internal interfaces of the n_rs485 line discipline.
+ *
+ * One struct rs485_bus per attached tty. Who touches what:
+ *   rx      receive_buf (one call at a time per tty, kworker context)
+ *   queue, cur, resp_*, events, stats, nodes: under lock (a spinlock, because
+ *           receive_buf must not sleep)
+ *   the bus itself (TX, termios switching, waiting for a response) belongs
+ *           to one work item on the bus's ordered workqueue, so requests of
+ *           all callers run one after the other in FIFO order.
+ */
+#ifndef N_RS485_INTERNAL_H
+#define N_RS485_INTERNAL_H
+
+#include <linux/kref.h>
+#include <linux/ktime.h>
+#include <linux/list.h>
+#include <linux/mutex.h>
+#include <linux/spinlock.h>
+#include <linux/tty.h>
+#include <linux/wait.h>
+#include <linux/workqueue.h>
+#include <uapi/linux/n_rs485.h>
+
+/* ADDR INSTR FLAGS LEN DATA CRC */
+#define RS485_WIRE_MAX		(RS485_MAX_FRAME + 1)
+#define RS485_EVENT_QUEUE_MAX	64
+#define RS485_REQ_QUEUE_MAX	64
+#define RS485_ERR_FAIL		8	/* CAN-like counter: +8 per failure */
+#define RS485_ERR_PASSIVE	128
+#define RS485_ERR_OFF		256
+
+enum rs485_rx_state {
+	RS485_RX_IDLE,		/* waiting for an address character */
+	RS485_RX_HEADER,	/* INSTR FLAGS LEN */
+	RS485_RX_DATA,
+	RS485_RX_CRC,
+};
+
+struct rs485_rx {
+	enum rs485_rx_state state;
+	unsigned int pos;		/* bytes of frame.buf filled */
+	u8 buf[RS485_MAX_FRAME];	/* ADDR INSTR FLAGS LEN DATA */
+};
+
+/* What the worker waits for after sending a request that expects a response. */
+enum rs485_resp_state {
+	RS485_RESP_NONE,	/* no response expected */
+	RS485_RESP_WAIT,	/* nothing yet */
+	RS485_RESP_STARTED,	/* address character of the awaited node seen */
+	RS485_RESP_GOOD,	/* valid response in the request's resp */
+	RS485_RESP_CORRUPT,	/* a frame from that node failed its CRC */
+};
+
+struct rs485_req {
+	struct list_head node;		/* bus->queue */
+	struct kref ref;		/* caller + bus */
+	struct rs485_frame frame;	/* request */
+	struct rs485_frame resp;
+	u32 timeout_us;
+	u32 retries;
+	u32 status;
+	u32 attempts;
+	bool expect_resp;
+	bool is_xfer;			/* RS485_IOC_XFER (else write()) */
+	bool done;
+	bool abandoned;			/* the caller gave up (signal, close) */
+};
+
+struct rs485_event {
+	struct list_head node;
+	unsigned int len;
+	u8 buf[RS485_MAX_FRAME];
+};
+
+struct rs485_bus {
+	struct tty_struct *tty;
+	spinlock_t lock;		/* everything below that rx hands over */
+	struct rs485_rx rx;
+
+	struct workqueue_struct *wq;
+	struct work_struct work;
+	struct list_head queue;		/* struct rs485_req, FIFO */
+	unsigned int queued;
+	struct rs485_req *cur;		/* on the bus now */
+	enum rs485_resp_state resp_state;
+	wait_queue_head_t resp_wait;	/* the worker: response or dead */
+	wait_queue_head_t done_wait;	/* callers: their request done */
+	bool dead;			/* detaching or hung up: no new work */
+	ktime_t line_free;		/* earliest start of the next request */
+
+	struct list_head events;	/* struct rs485_event, FIFO */
+	unsigned int nevents;
+
+	struct rs485_config cfg;	/* written under line_mutex and lock */
+	struct rs485_stats stats;
+	u16 node_err[256];
+
+	struct ktermios saved_termios;
+	struct mutex line_mutex;	/* termios and cfg: worker vs SET_CONFIG */
+};
+
+/* rs485-crc.c */
+void rs485_crc_init(void);
+u8 rs485_crc(const u8 *buf, size_t len);
+
+/* rs485-rx.c */
+void rs485_rx_reset(struct rs485_bus *bus);
+void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int count);
+
+/* rs485-tx.c */
+int rs485_line_setup(struct rs485_bus *bus);
+void rs485_line_restore(struct rs485_bus *bus);
+int rs485_line_set_config(struct rs485_bus *bus, const struct rs485_config *cfg);
+u64 rs485_char_ns(const struct rs485_bus *bus);
+int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len);
+
+/* rs485-xact.c */
+struct rs485_req *rs485_req_alloc(void);
+void rs485_req_put(struct rs485_req *req);
+int rs485_req_submit(struct rs485_bus *bus, struct rs485_req *req);
+int rs485_req_wait(struct rs485_bus *bus, struct rs485_req *req);
+void rs485_xact_work(struct work_struct *work);
+void rs485_xact_kill(struct rs485_bus *bus);
+bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned int len);
+void rs485_rx_corrupt_from(struct rs485_bus *bus, u8 addr);
+void rs485_rx_addr_seen(struct rs485_bus *bus, u8 addr);
+
+/* rs485-user.c */
+void rs485_event_queue(struct rs485_bus *bus, const u8 *frame, unsigned int len);
+void rs485_events_flush(struct rs485_bus *bus);
+ssize_t rs485_read(struct tty_struct *tty, struct file *file, u8 *kbuf, size_t nr,
+		   void **cookie, unsigned long offset);
+ssize_t rs485_write(struct tty_struct *tty, struct file *file, const u8 *buf, size_t nr);
+__poll_t rs485_poll(struct tty_struct *tty, struct file *file, struct poll_table_struct *wait);
+int rs485_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg);
+int rs485_compat_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg);
+int rs485_config_check(const struct rs485_config *cfg);
+
+#endif /* N_RS485_INTERNAL_H */

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * rs485-rx.c - the receive state machine: characters and their tty flags in,
+ * frames out.
+ *
+ * The port receives in space parity (PARENB|CMSPAR, INPCK, !IGNPAR), so the
+ * address character of every frame (9th bit 1) arrives flagged TTY_PARITY
+ * and every other character unflagged. Any TTY_PARITY character starts a new
+ * frame, whatever state the machine is in: that is the resynchronisation
+ * rule of the protocol, and it means that garbage can cost at most the frame
+ * it hits. Overruns, framing errors and breaks abort the frame being
+ * received, because a character of it may be missing or wrong.
+ *
+ * Runs only from receive_buf (one call at a time per tty), so rx needs no
+ * lock; what it hands on is passed under bus->lock.
+ */
+#include "n_rs485.h"
+
+void rs485_rx_reset(struct rs485_bus *bus)
+{
+	bus->rx.state = RS485_RX_IDLE;
+	bus->rx.pos = 0;
+}
+
+static void rs485_rx_count(struct rs485_bus *bus, u64 *counter)
+{
+	unsigned long flags;
+
+	spin_lock_irqsave(&bus->lock, flags);
+	(*counter)++;
+	spin_unlock_irqrestore(&bus->lock, flags);
+}
+
+/* A whole frame with a good CRC: to the waiting transaction or to read(). */
+static void rs485_rx_deliver(struct rs485_bus *bus)
+{
+	const u8 *frame = bus->rx.buf;
+	unsigned int len = bus->rx.pos;
+
+	if (!rs485_rx_frame_for_xact(bus, frame, len))
+		rs485_event_queue(bus, frame, len);
+}
+
+static void rs485_rx_start(struct rs485_bus *bus, u8 addr)
+{
+	if (bus->rx.state != RS485_RX_IDLE)
+		rs485_rx_count(bus, &bus->stats.rx_truncated);
+	bus->rx.buf[0] = addr;
+	bus->rx.pos = 1;
+	bus->rx.state = RS485_RX_HEADER;
+	rs485_rx_addr_seen(bus, addr);
+}
+
+static void rs485_rx_data(struct rs485_bus *bus, u8 c)
+{
+	struct rs485_rx *rx = &bus->rx;
+
+	switch (rx->state) {
+	case RS485_RX_IDLE:
+		rs485_rx_count(bus, &bus->stats.rx_noise);
+		return;
+	case RS485_RX_HEADER:
+		rx->buf[rx->pos++] = c;
+		if (rx->pos < RS485_HEADER_LEN)
+			return;
+		rx->state = c ? RS485_RX_DATA : RS485_RX_CRC;
+		return;
+	case RS485_RX_DATA:
+		rx->buf[rx->pos++] = c;
+		if (rx->pos == RS485_HEADER_LEN + rx->buf[3])
+			rx->state = RS485_RX_CRC;
+		return;
+	case RS485_RX_CRC:
+		rx->state = RS485_RX_IDLE;
+		if (rs485_crc(rx->buf, rx->pos) != c) {
+			rs485_rx_count(bus, &bus->stats.rx_crc_errors);
+			rs485_rx_corrupt_from(bus, rx->buf[0]);
+			return;
+		}
+		rs485_rx_deliver(bus);
+		return;
+	}
+}
+
+void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int count)
+{
+	unsigned long flags;
+	int i;
+
+	spin_lock_irqsave(&bus->lock, flags);
+	bus->stats.rx_bytes += count;
+	spin_unlock_irqrestore(&bus->lock, flags);
+
+	for (i = 0; i < count; i++) {
+		char flag = fp ? fp[i] : TTY_NORMAL;
+
+		switch (flag) {
+		case TTY_NORMAL:
+			rs485_rx_data(bus, cp[i]);
+			break;
+		case TTY_PARITY:
+			rs485_rx_start(bus, cp[i]);
+			break;
+		case TTY_OVERRUN:
+			/* An extra NUL: a character was lost before this point. */
+			rs485_rx_count(bus, &bus->stats.rx_overruns);
+			if (bus->rx.state != RS485_RX_IDLE)
+				rs485_rx_count(bus, &bus->stats.rx_truncated);
+			rs485_rx_reset(bus);
+			break;
+		default:	/* TTY_FRAME, TTY_BREAK */
+			rs485_rx_count(bus, &bus->stats.rx_framing);
+			if (bus->rx.state != RS485_RX_IDLE)
+				rs485_rx_count(bus, &bus->stats.rx_truncated);
+			rs485_rx_reset(bus);
+			break;
+		}
+	}
+}

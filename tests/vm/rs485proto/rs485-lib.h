@@ -1,0 +1,357 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * rs485-lib.h - helpers of the rs485proto VM tests: the simulated FPGA with
+ * its wires, attaching n_rs485 to /dev/ttyTSUn, the protocol's CRC, and a
+ * slave that answers on the wire (a thread of the test program). Included
+ * by exactly one .c per program.
+ */
+#ifndef RS485_LIB_H
+#define RS485_LIB_H
+
+#include <fcntl.h>
+#include <poll.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdint.h>
+#include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+#include <linux/n_rs485.h>
+#include <linux/ts7800_sim.h>
+
+#include "tap.h"
+
+#define SLAVE_ADDR	0x10
+#define OTHER_ADDR	0x11
+
+/* Instructions of the test slave (what it does with a request). */
+enum {
+	I_ECHO = 0x01,		/* ACK, data = request data */
+	I_SILENT = 0x02,	/* never answers */
+	I_UNKNOWN = 0x03,	/* UNKINSTR */
+	I_DEVERR = 0x04,	/* DEVERR, data 0xde 0xad */
+	I_CORRUPT_ONCE = 0x05,	/* first answer has a bad CRC, RESEND gets a good one */
+	I_EVENT_FIRST = 0x06,	/* an EVENT frame (same addr/instr) before the answer */
+	I_WRONG_ADDR = 0x07,	/* answers from OTHER_ADDR */
+	I_CORRUPT = 0x08,	/* every answer has a bad CRC */
+	I_COUNT = 0x09,		/* ACK, data = u32 count of executions of this instr */
+};
+
+static inline int sh(const char *fmt, ...)
+{
+	char cmd[512];
+	va_list ap;
+	int st;
+
+	va_start(ap, fmt);
+	vsnprintf(cmd, sizeof(cmd), fmt, ap);
+	va_end(ap);
+	st = system(cmd);
+	return st == -1 ? -1 : WEXITSTATUS(st);
+}
+
+static inline double now_s(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + ts.tv_nsec / 1e9;
+}
+
+static inline int wait_for_path(const char *path)
+{
+	struct stat sb;
+	int i;
+
+	for (i = 0; i < 300; i++) {
+		if (!stat(path, &sb))
+			return 0;
+		usleep(10000);
+	}
+	return -1;
+}
+
+static inline int sim_load(void)
+{
+	if (sh("modprobe ts_uart") || sh("modprobe ts7800_sim"))
+		return -1;
+	return wait_for_path("/dev/ttyTSU0") || wait_for_path("/dev/ts7800-sim/uart0") ||
+	       wait_for_path("/dev/ttyTSU1") || wait_for_path("/dev/ts7800-sim/uart1");
+}
+
+static inline void sim_unload(void)
+{
+	sh("modprobe -r n_rs485");
+	sh("modprobe -r ts7800_sim");
+	sh("modprobe -r ts_uart ts7800_fpga");
+}
+
+/* Open /dev/ttyTSU<port> and attach the discipline; returns the fd or -1. */
+static inline int bus_open(int port)
+{
+	int ld = N_RS485_DEFAULT_LDISC;
+	char path[32];
+	int fd;
+
+	snprintf(path, sizeof(path), "/dev/ttyTSU%d", port);
+	fd = open(path, O_RDWR | O_NOCTTY);
+	if (fd < 0)
+		return -1;
+	if (ioctl(fd, TIOCSETD, &ld)) {
+		close(fd);
+		return -1;
+	}
+	return fd;
+}
+
+static inline int wire_open(int port)
+{
+	char path[48];
+
+	snprintf(path, sizeof(path), "/dev/ts7800-sim/uart%d", port);
+	return open(path, O_RDWR | O_NONBLOCK);
+}
+
+/* CRC-8/MAXIM, bit by bit: independent of the kernel's table. */
+static inline uint8_t crc8_maxim(const uint8_t *p, size_t n)
+{
+	uint8_t crc = 0;
+	int b;
+
+	while (n--) {
+		crc ^= *p++;
+		for (b = 0; b < 8; b++)
+			crc = crc & 1 ? (crc >> 1) ^ 0x8c : crc >> 1;
+	}
+	return crc;
+}
+
+/* Frame (ADDR..DATA, n bytes) to wire words with CRC; returns the word count. */
+static inline size_t frame_words(const uint8_t *f, size_t n, uint8_t crc_xor, uint16_t *w)
+{
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		w[i] = f[i];
+	w[0] |= TS7800_SIM_WORD_BIT9;
+	w[n] = crc8_maxim(f, n) ^ crc_xor;
+	return n + 1;
+}
+
+static inline int wire_send(int wfd, const uint16_t *w, size_t n)
+{
+	size_t done = 0;
+	ssize_t r;
+
+	while (done < n) {
+		r = write(wfd, w + done, (n - done) * 2);
+		if (r < 0) {
+			if (errno == EINTR)
+				continue;
+			if (errno == EAGAIN) {
+				struct pollfd p = { .fd = wfd, .events = POLLOUT };
+
+				poll(&p, 1, 100);
+				continue;
+			}
+			return -1;
+		}
+		done += r / 2;
+	}
+	return 0;
+}
+
+static inline int wire_send_frame(int wfd, const uint8_t *f, size_t n, uint8_t crc_xor)
+{
+	uint16_t w[RS485_MAX_FRAME + 1];
+
+	return wire_send(wfd, w, frame_words(f, n, crc_xor, w));
+}
+
+/* The slave thread: parses what the master sends and answers. */
+struct slave {
+	int wfd;
+	atomic_int stop;
+	pthread_t thread;
+	/* what it saw (written by the slave thread only) */
+	atomic_uint requests;		/* valid request frames to any address */
+	atomic_uint resends;		/* ...with the RESEND flag */
+	atomic_uint executions[256];	/* per instruction, RESEND not counted */
+	atomic_uint bad_frames;		/* CRC errors, bad 9th bits, truncation */
+	atomic_uint broadcasts;
+	uint8_t last[RS485_MAX_FRAME];	/* last request (guarded by last_lock) */
+	size_t last_len;
+	pthread_mutex_t last_lock;
+	uint8_t last_resp[RS485_MAX_FRAME];	/* for RESEND */
+	size_t last_resp_len;
+	unsigned int corrupt_count;
+};
+
+static inline void slave_answer(struct slave *s, const uint8_t *req)
+{
+	uint8_t r[RS485_MAX_FRAME];
+	uint8_t ev[8];
+	uint8_t instr = req[1], xor = 0;
+	size_t len = 0;
+	uint32_t cnt;
+
+	if (req[0] == RS485_ADDR_BROADCAST) {
+		s->broadcasts++;
+		return;
+	}
+	if (req[0] != SLAVE_ADDR)
+		return;
+	if (req[2] & RS485_REQ_RESEND) {
+		s->resends++;
+		if (s->last_resp_len)
+			wire_send_frame(s->wfd, s->last_resp, s->last_resp_len,
+					instr == I_CORRUPT ? 0x55 : 0);
+		return;
+	}
+	s->executions[instr]++;
+	if (req[2] & RS485_REQ_NOACK)
+		return;
+	r[0] = SLAVE_ADDR;
+	r[1] = instr;
+	r[2] = RS485_RESP_ACK;
+	switch (instr) {
+	case I_ECHO:
+	case I_EVENT_FIRST:
+		len = req[3];
+		memcpy(r + 4, req + 4, len);
+		break;
+	case I_SILENT:
+		return;
+	case I_UNKNOWN:
+		r[2] = RS485_RESP_UNKINSTR;
+		break;
+	case I_DEVERR:
+		r[2] = RS485_RESP_DEVERR;
+		r[4] = 0xde;
+		r[5] = 0xad;
+		len = 2;
+		break;
+	case I_CORRUPT_ONCE:
+		len = 1;
+		r[4] = 0x5a;
+		xor = 0x55;
+		break;
+	case I_WRONG_ADDR:
+		r[0] = OTHER_ADDR;
+		break;
+	case I_CORRUPT:
+		xor = 0x55;
+		break;
+	case I_COUNT:
+		cnt = s->executions[I_COUNT];
+		memcpy(r + 4, &cnt, 4);
+		len = 4;
+		break;
+	default:
+		r[2] = RS485_RESP_UNKINSTR;
+		break;
+	}
+	r[3] = len;
+	if (instr == I_EVENT_FIRST) {
+		ev[0] = SLAVE_ADDR;
+		ev[1] = instr;
+		ev[2] = RS485_RESP_EVENT;
+		ev[3] = 2;
+		ev[4] = req[3];
+		ev[5] = 0xee;
+		wire_send_frame(s->wfd, ev, 6, 0);
+	}
+	memcpy(s->last_resp, r, 4 + len);
+	s->last_resp_len = 4 + len;
+	wire_send_frame(s->wfd, r, 4 + len, xor);
+}
+
+static inline void *slave_main(void *arg)
+{
+	struct slave *s = arg;
+	struct pollfd p = { .fd = s->wfd, .events = POLLIN };
+	uint8_t f[RS485_MAX_FRAME + 1];
+	uint16_t w[512];
+	size_t pos = 0;
+	int in_frame = 0;
+
+	while (!s->stop) {
+		ssize_t r, i;
+
+		if (poll(&p, 1, 20) <= 0)
+			continue;
+		r = read(s->wfd, w, sizeof(w));
+		if (r <= 0)
+			continue;
+		for (i = 0; i < r / 2; i++) {
+			if (w[i] & TS7800_SIM_WORD_BIT9) {
+				if (in_frame)
+					s->bad_frames++;
+				in_frame = 1;
+				pos = 0;
+			} else if (!in_frame) {
+				s->bad_frames++;
+				continue;
+			}
+			f[pos++] = w[i] & 0xff;
+			if (pos >= 5 && pos == (size_t)f[3] + 5) {
+				in_frame = 0;
+				if (crc8_maxim(f, pos - 1) != f[pos - 1]) {
+					s->bad_frames++;
+					continue;
+				}
+				pthread_mutex_lock(&s->last_lock);
+				memcpy(s->last, f, pos - 1);
+				s->last_len = pos - 1;
+				pthread_mutex_unlock(&s->last_lock);
+				s->requests++;
+				slave_answer(s, f);
+			}
+		}
+	}
+	return NULL;
+}
+
+static inline int slave_start(struct slave *s, int port)
+{
+	memset(s, 0, sizeof(*s));
+	pthread_mutex_init(&s->last_lock, NULL);
+	s->wfd = wire_open(port);
+	if (s->wfd < 0)
+		return -1;
+	return pthread_create(&s->thread, NULL, slave_main, s);
+}
+
+static inline void slave_stop(struct slave *s)
+{
+	s->stop = 1;
+	pthread_join(s->thread, NULL);
+	close(s->wfd);
+}
+
+/* One transaction; returns the ioctl result, the outcome in x. */
+static inline int xfer(int fd, struct rs485_xfer *x, uint8_t addr, uint8_t instr, uint8_t flags,
+		       const void *data, uint8_t len, uint32_t timeout_us, uint32_t retries)
+{
+	memset(x, 0, sizeof(*x));
+	x->req.addr = addr;
+	x->req.instr = instr;
+	x->req.flags = flags;
+	x->req.len = len;
+	if (len)
+		memcpy(x->req.data, data, len);
+	x->timeout_us = timeout_us;
+	x->retries = retries;
+	return ioctl(fd, RS485_IOC_XFER, x);
+}
+
+static inline int get_stats(int fd, struct rs485_stats *st)
+{
+	memset(st, 0, sizeof(*st));
+	return ioctl(fd, RS485_IOC_GET_STATS, st);
+}
+
+#endif /* RS485_LIB_H */
