@@ -3,11 +3,22 @@
 # Works in bash and in busybox sh (the ARM lane).
 #   tap_plan N; tap_ok "desc" cmd args...; tap_is "desc" got want;
 #   tap_skip "desc" "reason"; tap_diag "text"; tap_finish (use as the exit code)
+#   tap_require_module MODULE (before tap_plan: skip the whole program without it)
 
 TAP_N=0
 TAP_FAILED=0
 TAP_SKIPPED=0
 TAP_PLANNED=0
+
+# tap_require_module MODULE: when the running kernel cannot load MODULE (for
+# example gpio-sim, which Debian's stock kernel lacks and the debug lane's
+# kernel has), skip the whole program visibly: "1..0 # SKIP reason", exit 4.
+tap_require_module() {
+	modprobe -n -q "$1" 2>/dev/null && return 0
+	printf 'TAP version 13\n1..0 # SKIP module %s is not available in kernel %s (it is in the debug lane: tests/harness/vm-debug.sh)\n' \
+		"$1" "$(uname -r)"
+	exit 4
+}
 
 tap_plan() { TAP_PLANNED=$1; printf 'TAP version 13\n1..%s\n' "$1"; }
 tap_diag() { printf '# %s\n' "$*"; }
