@@ -10,6 +10,7 @@ Master::Master(MasterConfig cfg, FrameSender send, NowFn now)
       send_(std::move(send)),
       now_(std::move(now)),
       hb_consumer_(now_, [this](const HeartbeatUpdate& u) { on_heartbeat(u); }),
+      guarding_(send_, now_, [this](const HeartbeatUpdate& u) { on_heartbeat(u); }),
       hb_producer_(cfg_.node_id, send_, now_),
       sync_(send_, now_) {
   if (cfg_.heartbeat_period.count() > 0) hb_producer_.set_period(cfg_.heartbeat_period);
@@ -20,7 +21,7 @@ void Master::handle(const CanFrame& f) {
   if (f.id >= cob::kSdoTx + 1 && f.id <= cob::kSdoTx + 127) {
     auto it = sdo_.find(static_cast<std::uint8_t>(f.id - cob::kSdoTx));
     if (it != sdo_.end() && it->second->handle(f)) return;
-  } else if (hb_consumer_.handle(f)) {
+  } else if (guarding_.handle(f) || hb_consumer_.handle(f)) {
     return;
   } else if (auto e = decode_emcy(f)) {
     auto listeners = emcy_listeners_;  // a listener may remove itself
@@ -50,6 +51,7 @@ void Master::on_heartbeat(const HeartbeatUpdate& u) {
 void Master::poll() {
   for (auto& [node, c] : sdo_) c->poll();
   hb_consumer_.poll();
+  guarding_.poll();
   hb_producer_.poll();
   sync_.poll();
   // Copy: a service may detach another one from inside poll().
@@ -64,6 +66,7 @@ std::optional<TimePoint> Master::next_deadline() const {
   };
   for (auto& [node, c] : sdo_) take(c->deadline());
   take(hb_consumer_.deadline());
+  take(guarding_.deadline());
   take(hb_producer_.deadline());
   take(sync_.deadline());
   for (const TimedService* s : services_) take(s->deadline());

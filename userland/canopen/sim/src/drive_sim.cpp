@@ -206,6 +206,7 @@ void SimulatedDrive::reset(bool application) {
   rpdo_latched_ = {};
   master_hb_seen_.reset();
   master_hb_lost_ = false;
+  guard_toggle_ = false;
   nmt_ = NmtState::kBootUp;
   send_(heartbeat_frame(cfg_.node, NmtState::kBootUp));
   enter_nmt(NmtState::kPreOperational);
@@ -222,6 +223,13 @@ void SimulatedDrive::enter_nmt(NmtState s) {
 
 void SimulatedDrive::handle(const CanFrame& f) {
   if (f.id == cob::kNmt) return on_nmt(f);
+  if (f.rtr && f.id == cob::kNmtErrorControl + cfg_.node) {
+    // Node guarding: state plus a toggle bit that alternates from 0.
+    if (faults_.heartbeat_silent) return;  // a silent node answers nothing
+    send_(make_frame(f.id, {static_cast<std::uint8_t>(static_cast<std::uint8_t>(nmt_) | (guard_toggle_ ? 0x80 : 0))}));
+    guard_toggle_ = !guard_toggle_;
+    return;
+  }
   if (nmt_ == NmtState::kStopped) {
     if (f.id == cob::kNmtErrorControl + ((od_.get<std::uint32_t>(0x1016, 1) >> 16) & 0x7F)) on_master_heartbeat();
     return;

@@ -18,6 +18,7 @@
 #include "advee/canopen/frame.hpp"
 #include "advee/canopen/heartbeat.hpp"
 #include "advee/canopen/nmt.hpp"
+#include "advee/canopen/node_guarding.hpp"
 #include "advee/canopen/sdo_client.hpp"
 #include "advee/canopen/sync.hpp"
 
@@ -59,6 +60,8 @@ class Master {
   SdoClient& sdo(std::uint8_t node);
 
   HeartbeatConsumer& heartbeat_consumer() { return hb_consumer_; }
+  // Guarding events reach the heartbeat listeners (same event types).
+  NodeGuarding& node_guarding() { return guarding_; }
   HeartbeatProducer& heartbeat_producer() { return hb_producer_; }
   SyncProducer& sync() { return sync_; }
   void send_time(std::chrono::system_clock::time_point t);
@@ -91,6 +94,7 @@ class Master {
   NowFn now_;
   std::map<std::uint8_t, std::unique_ptr<SdoClient>> sdo_;
   HeartbeatConsumer hb_consumer_;
+  NodeGuarding guarding_;
   HeartbeatProducer hb_producer_;
   SyncProducer sync_;
   std::vector<std::pair<ListenerId, std::function<void(const HeartbeatUpdate&)>>> hb_listeners_;

@@ -25,7 +25,7 @@ namespace advee::canopen::sim {
 enum class DriveProfile { kEpos, kIcla };
 
 struct DriveFaults {
-  bool heartbeat_silent = false;               // stop producing heartbeat
+  bool heartbeat_silent = false;               // no heartbeat, no node-guarding replies
   bool refuse_mode_change_while_halt = false;  // 0x6061 ignores 0x6060 while halt is set
   bool ignore_mode_change = false;             // 0x6061 never follows 0x6060
   bool refuse_transition_16 = false;           // quick stop active -> operation enabled refused
@@ -134,6 +134,7 @@ class SimulatedDrive {
   std::optional<TimePoint> tpdo_due_;  // an inhibited change or an event timer
   std::array<TpdoState, 4> tpdo_{};
   std::array<std::optional<CanFrame>, 4> rpdo_latched_{};  // synchronous RPDOs wait for SYNC
+  bool guard_toggle_ = false;  // node guarding reply toggle, 0 after reset
   std::uint64_t rpdos_received_ = 0;
   std::uint64_t tpdos_sent_ = 0;
 };
