@@ -38,6 +38,7 @@ enum {
 	I_WRONG_ADDR = 0x07,	/* answers from OTHER_ADDR */
 	I_CORRUPT = 0x08,	/* every answer has a bad CRC */
 	I_COUNT = 0x09,		/* ACK, data = u32 count of executions of this instr */
+	I_SLOW = 0x0a,		/* ACK after 100 ms, data = request data */
 };
 
 static inline int sh(const char *fmt, ...)
@@ -166,7 +167,7 @@ static inline int wire_send(int wfd, const uint16_t *w, size_t n)
 
 static inline int wire_send_frame(int wfd, const uint8_t *f, size_t n, uint8_t crc_xor)
 {
-	uint16_t w[RS485_MAX_FRAME + 1];
+	uint16_t w[RS485_MAX_FRAME + 1] = { 0 };
 
 	return wire_send(wfd, w, frame_words(f, n, crc_xor, w));
 }
@@ -187,8 +188,43 @@ struct slave {
 	pthread_mutex_t last_lock;
 	uint8_t last_resp[RS485_MAX_FRAME];	/* for RESEND */
 	size_t last_resp_len;
-	unsigned int corrupt_count;
+	pthread_mutex_t send_lock;	/* one frame at a time on the wire */
+	/* unsolicited events (event_period_us > 0): a second thread */
+	unsigned int event_period_us;
+	atomic_uint events_sent;
+	pthread_t event_thread;
 };
+
+static inline void slave_send(struct slave *s, const uint8_t *f, size_t n, uint8_t crc_xor)
+{
+	pthread_mutex_lock(&s->send_lock);
+	wire_send_frame(s->wfd, f, n, crc_xor);
+	pthread_mutex_unlock(&s->send_lock);
+}
+
+/* Event frame number seq: addr SLAVE_ADDR, instr 0x41, EVENT, 4 bytes of seq. */
+static inline size_t event_frame(uint32_t seq, uint8_t *f)
+{
+	f[0] = SLAVE_ADDR;
+	f[1] = 0x41;
+	f[2] = RS485_RESP_EVENT;
+	f[3] = 4;
+	memcpy(f + 4, &seq, 4);
+	return 8;
+}
+
+static inline void *slave_events_main(void *arg)
+{
+	struct slave *s = arg;
+	uint8_t f[8];
+
+	while (!s->stop) {
+		usleep(s->event_period_us);
+		slave_send(s, f, event_frame(s->events_sent, f), 0);
+		s->events_sent++;
+	}
+	return NULL;
+}
 
 static inline void slave_answer(struct slave *s, const uint8_t *req)
 {
@@ -207,8 +243,8 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 	if (req[2] & RS485_REQ_RESEND) {
 		s->resends++;
 		if (s->last_resp_len)
-			wire_send_frame(s->wfd, s->last_resp, s->last_resp_len,
-					instr == I_CORRUPT ? 0x55 : 0);
+			slave_send(s, s->last_resp, s->last_resp_len,
+				   instr == I_CORRUPT ? 0x55 : 0);
 		return;
 	}
 	s->executions[instr]++;
@@ -218,6 +254,9 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 	r[1] = instr;
 	r[2] = RS485_RESP_ACK;
 	switch (instr) {
+	case I_SLOW:
+		usleep(100000);
+		/* fall through */
 	case I_ECHO:
 	case I_EVENT_FIRST:
 		len = req[3];
@@ -262,11 +301,11 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		ev[3] = 2;
 		ev[4] = req[3];
 		ev[5] = 0xee;
-		wire_send_frame(s->wfd, ev, 6, 0);
+		slave_send(s, ev, 6, 0);
 	}
 	memcpy(s->last_resp, r, 4 + len);
 	s->last_resp_len = 4 + len;
-	wire_send_frame(s->wfd, r, 4 + len, xor);
+	slave_send(s, r, 4 + len, xor);
 }
 
 static inline void *slave_main(void *arg)
@@ -315,20 +354,34 @@ static inline void *slave_main(void *arg)
 	return NULL;
 }
 
-static inline int slave_start(struct slave *s, int port)
+/* Start the slave; with event_period_us it also sends an event that often. */
+static inline int slave_start_events(struct slave *s, int port, unsigned int event_period_us)
 {
 	memset(s, 0, sizeof(*s));
 	pthread_mutex_init(&s->last_lock, NULL);
+	pthread_mutex_init(&s->send_lock, NULL);
+	s->event_period_us = event_period_us;
 	s->wfd = wire_open(port);
 	if (s->wfd < 0)
 		return -1;
-	return pthread_create(&s->thread, NULL, slave_main, s);
+	if (pthread_create(&s->thread, NULL, slave_main, s))
+		return -1;
+	if (event_period_us && pthread_create(&s->event_thread, NULL, slave_events_main, s))
+		return -1;
+	return 0;
+}
+
+static inline int slave_start(struct slave *s, int port)
+{
+	return slave_start_events(s, port, 0);
 }
 
 static inline void slave_stop(struct slave *s)
 {
 	s->stop = 1;
 	pthread_join(s->thread, NULL);
+	if (s->event_period_us)
+		pthread_join(s->event_thread, NULL);
 	close(s->wfd);
 }
 

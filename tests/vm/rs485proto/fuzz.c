@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * fuzz - 10^5 random characters with random 9th bits, in bursts, each burst
+ * followed by a valid event frame: every valid frame after the noise reaches
+ * read() byte-exact and in order, the discipline counts the garbage, and a
+ * transaction works afterwards.
+ */
+#include "rs485-lib.h"
+
+#define PORT		0
+#define NOISE_CHARS	100000
+#define BURSTS		200
+
+struct reader {
+	int fd;
+	atomic_int stop;
+	uint32_t next;		/* next expected sequence number */
+	unsigned int others;	/* valid frames made by the noise */
+};
+
+static void *reader_main(void *arg)
+{
+	struct reader *r = arg;
+	struct pollfd p = { .fd = r->fd, .events = POLLIN };
+	uint8_t buf[RS485_MAX_FRAME], want[8];
+	ssize_t n;
+
+	while (!r->stop) {
+		if (poll(&p, 1, 100) <= 0)
+			continue;
+		n = read(r->fd, buf, sizeof(buf));
+		if (n <= 0)
+			continue;
+		event_frame(r->next, want);
+		if (n == 8 && !memcmp(buf, want, 8))
+			r->next++;
+		else
+			r->others++;
+	}
+	return NULL;
+}
+
+int main(void)
+{
+	static uint16_t w[NOISE_CHARS / BURSTS * 2 + 16];
+	struct rs485_stats st;
+	struct rs485_xfer x;
+	struct reader rd;
+	struct slave s;
+	pthread_t rt;
+	uint32_t rng = 0x2545f491;
+	int fd, wfd, b, ret;
+	size_t i, n;
+	uint8_t f[8];
+	double t0;
+
+	tap_plan(4);
+	if (sim_load())
+		tap_bail("cannot load ts_uart + ts7800_sim");
+	fd = bus_open(PORT);
+	wfd = wire_open(PORT);
+	if (fd < 0 || wfd < 0)
+		tap_bail("attach n_rs485, wire");
+	memset(&rd, 0, sizeof(rd));
+	rd.fd = fd;
+	pthread_create(&rt, NULL, reader_main, &rd);
+
+	t0 = now_s();
+	for (b = 0; b < BURSTS; b++) {
+		n = NOISE_CHARS / BURSTS;
+		for (i = 0; i < n; i++) {
+			rng ^= rng << 13;
+			rng ^= rng >> 17;
+			rng ^= rng << 5;
+			w[i] = rng & TS7800_SIM_WORD_CHAR;
+		}
+		n += frame_words(f, event_frame(b, f), 0, w + n);
+		if (wire_send(wfd, w, n))
+			tap_bail("wire write");
+	}
+	/* the wire needs ~10 s for it all at 115200 Bd */
+	while (rd.next < BURSTS && now_s() - t0 < 60)
+		usleep(100000);
+	usleep(200000);
+	rd.stop = 1;
+	pthread_join(rt, NULL);
+	close(wfd);
+
+	get_stats(fd, &st);
+	tap_diag("%.1f s; stats: rx %llu chars, %llu frames, crc %llu, truncated %llu, noise %llu, events %llu, dropped %llu; %u frames made by the noise",
+		 now_s() - t0, (unsigned long long)st.rx_bytes, (unsigned long long)st.rx_frames,
+		 (unsigned long long)st.rx_crc_errors, (unsigned long long)st.rx_truncated,
+		 (unsigned long long)st.rx_noise, (unsigned long long)st.events,
+		 (unsigned long long)st.events_dropped, rd.others);
+	tap_ok(rd.next == BURSTS, "every valid frame after noise reached read() in order: %u of %d",
+	       rd.next, BURSTS);
+	tap_ok(st.rx_bytes >= NOISE_CHARS, "the discipline saw all %d noise characters (%llu)",
+	       NOISE_CHARS, (unsigned long long)st.rx_bytes);
+	tap_ok(st.rx_crc_errors + st.rx_truncated + st.rx_noise > 1000,
+	       "garbage is counted (CRC errors, truncated frames, stray characters)");
+	if (slave_start(&s, PORT))
+		tap_bail("slave");
+	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, f, 8, 300000, 2);
+	tap_ok(ret == 0 && x.status == RS485_OK && !memcmp(x.resp.data, f, 8),
+	       "a transaction works after the fuzzing");
+	slave_stop(&s);
+	close(fd);
+	sim_unload();
+	return tap_finish();
+}

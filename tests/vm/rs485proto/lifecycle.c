@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * lifecycle - pending transactions against signals, hangup, detach and
+ * rmmod: a signal ends the caller's wait with EINTR without corrupting the
+ * bus (the late response is not taken by the next caller); hangup and
+ * detach end pending calls with EIO; rmmod is refused while attached and the
+ * bus keeps working; blocked read() returns on detach.
+ */
+#include <signal.h>
+#include <sys/time.h>
+
+#include "rs485-lib.h"
+
+#define PORT	0
+
+static void on_alarm(int sig)
+{
+	(void)sig;
+}
+
+struct pending {
+	int fd;
+	int ret, err;
+	struct rs485_xfer x;
+};
+
+static void *pending_main(void *arg)
+{
+	struct pending *p = arg;
+
+	p->ret = xfer(p->fd, &p->x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, 2000000, 0);
+	p->err = errno;
+	return NULL;
+}
+
+/* Start a transaction that waits 2 s, act after 200 ms, see how it ends. */
+static void pending_vs(int fd, const char *what, int (*act)(int fd))
+{
+	struct pending p = { .fd = fd };
+	pthread_t t;
+	double t0 = now_s();
+
+	pthread_create(&t, NULL, pending_main, &p);
+	usleep(200000);
+	act(fd);
+	pthread_join(t, NULL);
+	tap_ok(p.ret == -1 && p.err == EIO && now_s() - t0 < 1.5,
+	       "%s ends a pending transaction with EIO (ret %d, %s, after %.2f s)", what, p.ret,
+	       strerror(p.err), now_s() - t0);
+}
+
+static int do_hangup(int fd)
+{
+	return ioctl(fd, TIOCVHANGUP);
+}
+
+static int do_detach(int fd)
+{
+	int ld = N_TTY;
+
+	return ioctl(fd, TIOCSETD, &ld);
+}
+
+int main(void)
+{
+	struct sigaction sa;
+	struct itimerval it;
+	struct rs485_xfer x;
+	struct slave s;
+	uint8_t d[4] = { 1, 2, 3, 4 };
+	int fd, fd2, ret, err;
+	double t0;
+
+	tap_plan(9);
+	if (sim_load())
+		tap_bail("cannot load ts_uart + ts7800_sim");
+	fd = bus_open(PORT);
+	if (fd < 0 || slave_start(&s, PORT))
+		tap_bail("attach n_rs485, slave");
+
+	/* a signal during a slow transaction */
+	memset(&sa, 0, sizeof(sa));
+	sa.sa_handler = on_alarm;
+	sigaction(SIGALRM, &sa, NULL);
+	memset(&it, 0, sizeof(it));
+	it.it_value.tv_usec = 30000;
+	setitimer(ITIMER_REAL, &it, NULL);
+	t0 = now_s();
+	ret = xfer(fd, &x, SLAVE_ADDR, I_SLOW, 0, d, 4, 500000, 0);
+	err = errno;
+	tap_ok(ret == -1 && err == EINTR && now_s() - t0 < 0.09,
+	       "a signal ends the caller's wait with EINTR (%.3f s)", now_s() - t0);
+	d[0] = 9;
+	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, d, 4, 500000, 0);
+	tap_ok(ret == 0 && x.status == RS485_OK && x.resp.instr == I_ECHO && x.resp.len == 4 &&
+	       !memcmp(x.resp.data, d, 4),
+	       "the next caller gets its own response, not the late one");
+
+	/* rmmod while attached */
+	tap_ok(sh("rmmod n_rs485 2>/dev/null") != 0, "rmmod is refused while attached");
+	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, d, 4, 500000, 0);
+	tap_ok(ret == 0 && x.status == RS485_OK, "...and the bus still works");
+
+	pending_vs(fd, "detach (TIOCSETD N_TTY)", do_detach);
+
+	/* blocked read() and detach from a second open file */
+	fd2 = open("/dev/ttyTSU0", O_RDWR | O_NOCTTY);
+	{
+		int ld = N_RS485_DEFAULT_LDISC;
+		uint8_t buf[RS485_MAX_FRAME];
+
+		ioctl(fd, TIOCSETD, &ld);
+		if (!fork()) {
+			usleep(200000);
+			ld = N_TTY;
+			ioctl(fd2, TIOCSETD, &ld);
+			_exit(0);
+		}
+		t0 = now_s();
+		ret = read(fd, buf, sizeof(buf));
+		err = errno;
+		wait(NULL);
+		tap_ok(now_s() - t0 < 2 && ld == N_RS485_DEFAULT_LDISC,
+		       "a blocked read() returns when another process detaches (ret %d, %s)", ret,
+		       ret < 0 ? strerror(err) : "-");
+	}
+	close(fd2);
+
+	{
+		int ld = N_RS485_DEFAULT_LDISC;
+
+		ioctl(fd, TIOCSETD, &ld);
+	}
+	pending_vs(fd, "hangup (TIOCVHANGUP)", do_hangup);
+	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, d, 4, 500000, 0);
+	tap_ok(ret == -1, "the hung-up file gives errors (%s)", strerror(errno));
+	close(fd);
+
+	/* a new open works again */
+	fd = bus_open(PORT);
+	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, d, 4, 500000, 0);
+	tap_ok(fd >= 0 && ret == 0 && x.status == RS485_OK, "reopen + attach after hangup works");
+	/* close with a transaction pending in another thread is the test's exit */
+	slave_stop(&s);
+	close(fd);
+	sim_unload();
+	return tap_finish();
+}
