@@ -40,6 +40,15 @@ enum rs485_rx_state {
 
 struct rs485_rx {
 	enum rs485_rx_state state;
+	/*
+	 * While the address character is sent in mark parity the UART flags
+	 * received characters against mark: the 9th bits of whatever arrives
+	 * then (full duplex) read inverted. The worker sets this from before the
+	 * switch to mark until everything received up to the switch back has
+	 * passed receive_buf; meanwhile a frame in progress takes every
+	 * character as data, and any character starts a frame (see rs485-rx.c).
+	 */
+	bool lenient;			/* under bus->lock */
 	unsigned int pos;		/* bytes of frame.buf filled */
 	u8 buf[RS485_MAX_FRAME];	/* ADDR INSTR FLAGS LEN DATA */
 };

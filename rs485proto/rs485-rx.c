@@ -11,6 +11,14 @@
  * it hits. Overruns, framing errors and breaks abort the frame being
  * received, because a character of it may be missing or wrong.
  *
+ * Sending the address character (mark parity) inverts the flags of what
+ * arrives meanwhile on a full-duplex link. From just before that switch
+ * until everything received up to the switch back has been seen, the machine
+ * is lenient: it trusts the length field instead of the flags, so that an
+ * event frame of the slave that overlaps the switch is not lost: inside a
+ * frame every character is data, and outside one any character starts one.
+ * The CRC still decides whether the frame is valid.
+ *
  * Runs only from receive_buf (one call at a time per tty), so rx needs no
  * lock; what it hands on is passed under bus->lock.
  */
@@ -85,10 +93,16 @@ static void rs485_rx_data(struct rs485_bus *bus, u8 c)
 void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int count)
 {
 	unsigned long flags;
+	bool lenient;
 	int i;
 
+	/*
+	 * The characters of this call were flagged before the call: if the
+	 * worker was not lenient yet, they were flagged before its switch.
+	 */
 	spin_lock_irqsave(&bus->lock, flags);
 	bus->stats.rx_bytes += count;
+	lenient = bus->rx.lenient;
 	spin_unlock_irqrestore(&bus->lock, flags);
 
 	for (i = 0; i < count; i++) {
@@ -96,10 +110,11 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 
 		switch (flag) {
 		case TTY_NORMAL:
-			rs485_rx_data(bus, cp[i]);
-			break;
 		case TTY_PARITY:
-			rs485_rx_start(bus, cp[i]);
+			if (lenient ? bus->rx.state == RS485_RX_IDLE : flag == TTY_PARITY)
+				rs485_rx_start(bus, cp[i]);
+			else
+				rs485_rx_data(bus, cp[i]);
 			break;
 		case TTY_OVERRUN:
 			/* An extra NUL: a character was lost before this point. */

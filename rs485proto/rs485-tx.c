@@ -130,9 +130,19 @@ static int rs485_drain(struct rs485_bus *bus, ktime_t start, size_t nchars)
  * Send one frame (ADDR ... CRC) and return when its last character has left
  * the UART; 0 or a negative error (detach, hangup, stuck transmitter).
  */
+static void rs485_rx_lenient(struct rs485_bus *bus, bool on)
+{
+	unsigned long flags;
+
+	spin_lock_irqsave(&bus->lock, flags);
+	bus->rx.lenient = on;
+	spin_unlock_irqrestore(&bus->lock, flags);
+}
+
 int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 {
 	s64 gap = ktime_to_ns(ktime_sub(bus->line_free, ktime_get()));
+	struct tty_port *port = bus->tty->port;
 	unsigned long flags;
 	ktime_t start;
 	int ret;
@@ -140,19 +150,27 @@ int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 	if (gap > 0)
 		fsleep(div_u64(gap, NSEC_PER_USEC) + 1);
 
+	rs485_rx_lenient(bus, true);
 	rs485_set_parity(bus, true);
 	start = ktime_get();
 	ret = rs485_write_all(bus, buf, 1);
 	if (!ret)
 		ret = rs485_drain(bus, start, 1);
 	rs485_set_parity(bus, false);
-	if (ret)
-		return ret;
-
-	start = ktime_get();
-	ret = rs485_write_all(bus, buf + 1, len - 1);
-	if (!ret)
-		ret = rs485_drain(bus, start, len - 1);
+	if (!ret) {
+		start = ktime_get();
+		ret = rs485_write_all(bus, buf + 1, len - 1);
+		if (!ret)
+			ret = rs485_drain(bus, start, len - 1);
+	}
+	/*
+	 * Everything flagged in mark parity was pushed by the UART before the
+	 * switch back (or, from a receive FIFO, within the data characters'
+	 * time): once the flip buffer work has run, the flags are exact again.
+	 */
+	if (port)
+		flush_work(&port->buf.work);
+	rs485_rx_lenient(bus, false);
 
 	spin_lock_irqsave(&bus->lock, flags);
 	bus->stats.tx_frames++;
