@@ -5,14 +5,15 @@
 
 namespace advee::canopen {
 
-Master::Master(MasterConfig cfg, FrameSender send, NowFn now)
+Master::Master(MasterConfig cfg, FrameSender send, NowFn now, WallClockFn wall)
     : cfg_(cfg),
       send_(std::move(send)),
       now_(std::move(now)),
       hb_consumer_(now_, [this](const HeartbeatUpdate& u) { on_heartbeat(u); }),
       guarding_(send_, now_, [this](const HeartbeatUpdate& u) { on_heartbeat(u); }),
       hb_producer_(cfg_.node_id, send_, now_),
-      sync_(send_, now_) {
+      sync_(send_, now_),
+      time_(send_, now_, std::move(wall)) {
   if (cfg_.heartbeat_period.count() > 0) hb_producer_.set_period(cfg_.heartbeat_period);
 }
 
@@ -54,6 +55,7 @@ void Master::poll() {
   guarding_.poll();
   hb_producer_.poll();
   sync_.poll();
+  time_.poll();
   // Copy: a service may detach another one from inside poll().
   auto services = services_;
   for (TimedService* s : services) s->poll();
@@ -69,6 +71,7 @@ std::optional<TimePoint> Master::next_deadline() const {
   take(guarding_.deadline());
   take(hb_producer_.deadline());
   take(sync_.deadline());
+  take(time_.deadline());
   for (const TimedService* s : services_) take(s->deadline());
   return d;
 }

@@ -64,6 +64,29 @@ CanFrame time_of_day_frame(std::chrono::system_clock::time_point t) {
   return f;
 }
 
+TimeProducer::TimeProducer(FrameSender send, NowFn now, WallClockFn wall)
+    : send_(std::move(send)), now_(std::move(now)), wall_(std::move(wall)) {}
+
+void TimeProducer::start(Duration period) {
+  period_ = period.count() > 0 ? period : Duration::zero();
+  next_ = now_();
+  poll();
+}
+
+void TimeProducer::poll() {
+  if (period_.count() == 0) return;
+  const TimePoint now = now_();
+  if (now < next_) return;
+  send_(time_of_day_frame(wall_()));
+  next_ += period_;
+  if (next_ <= now) next_ = now + period_;
+}
+
+std::optional<TimePoint> TimeProducer::deadline() const {
+  if (period_.count() == 0) return std::nullopt;
+  return next_;
+}
+
 std::optional<std::chrono::system_clock::time_point> decode_time_of_day(const CanFrame& f) {
   using namespace std::chrono;
   if (f.id != cob::kTime || f.len != 6) return std::nullopt;

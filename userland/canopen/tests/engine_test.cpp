@@ -151,6 +151,29 @@ TEST(TimeOfDayTest, RoundTripsAndUsesThe1984Epoch) {
   EXPECT_EQ(decode_time_of_day(time_of_day_frame(t)), t);
 }
 
+TEST(TimeProducerTest, PeriodicTimeCarriesTheWallClock) {
+  using namespace std::chrono;
+  ManualClock clock;
+  system_clock::time_point wall{seconds(441763200) + days(2)};
+  std::vector<CanFrame> sent;
+  Master m{MasterConfig{}, [&](const CanFrame& f) { sent.push_back(f); }, clock.fn(), [&] { return wall; }};
+  m.time_producer().start(1s);
+  ASSERT_EQ(sent.size(), 1u);
+  EXPECT_EQ(to_string(sent[0]), "100#000000000200");
+  wall += 1s;
+  clock.advance(999ms);
+  m.poll();
+  EXPECT_EQ(sent.size(), 1u);
+  clock.advance(1ms);
+  m.poll();
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(decode_time_of_day(sent[1]), wall);
+  m.time_producer().stop();
+  clock.advance(5s);
+  m.poll();
+  EXPECT_EQ(sent.size(), 2u);
+}
+
 TEST_F(EngineTest, EmcyIsDecodedAndSyncIsNotMistakenForIt) {
   std::vector<Emcy> emcy;
   master.add_emcy_listener([&](const Emcy& e) { emcy.push_back(e); });

@@ -44,7 +44,7 @@ class Master {
   using FrameListener = std::function<void(const CanFrame&)>;
   using ListenerId = std::uint64_t;
 
-  Master(MasterConfig cfg, FrameSender send, NowFn now);
+  Master(MasterConfig cfg, FrameSender send, NowFn now, WallClockFn wall = [] { return std::chrono::system_clock::now(); });
   Master(const Master&) = delete;
   Master& operator=(const Master&) = delete;
 
@@ -64,7 +64,10 @@ class Master {
   NodeGuarding& node_guarding() { return guarding_; }
   HeartbeatProducer& heartbeat_producer() { return hb_producer_; }
   SyncProducer& sync() { return sync_; }
+  // TIME on demand, or periodically from the system wall clock (replace it
+  // with set_wall_clock() in tests).
   void send_time(std::chrono::system_clock::time_point t);
+  TimeProducer& time_producer() { return time_; }
 
   // Listeners are removed with remove_listener(id) before their owner dies.
   ListenerId add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb);
@@ -97,6 +100,7 @@ class Master {
   NodeGuarding guarding_;
   HeartbeatProducer hb_producer_;
   SyncProducer sync_;
+  TimeProducer time_;
   std::vector<std::pair<ListenerId, std::function<void(const HeartbeatUpdate&)>>> hb_listeners_;
   std::vector<std::pair<ListenerId, std::function<void(const Emcy&)>>> emcy_listeners_;
   struct Subscription {

@@ -41,4 +41,24 @@ class SyncProducer {
 CanFrame time_of_day_frame(std::chrono::system_clock::time_point t);
 std::optional<std::chrono::system_clock::time_point> decode_time_of_day(const CanFrame& f);
 
+using WallClockFn = std::function<std::chrono::system_clock::time_point()>;
+
+// Periodic TIME producer. The period runs on the engine's monotonic clock;
+// the content comes from the wall clock (injected too).
+class TimeProducer {
+ public:
+  TimeProducer(FrameSender send, NowFn now, WallClockFn wall);
+  void start(Duration period);  // sends one at once; zero or negative stops
+  void stop() { period_ = Duration::zero(); }
+  void poll();
+  std::optional<TimePoint> deadline() const;
+
+ private:
+  FrameSender send_;
+  NowFn now_;
+  WallClockFn wall_;
+  Duration period_{};
+  TimePoint next_{};
+};
+
 }  // namespace advee::canopen
