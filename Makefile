@@ -86,7 +86,7 @@ unit:
 gates:
 	@$(TOP)/scripts/kernel-gates.sh
 
-vm-x86: modules testprogs
+vm-x86: modules testprogs userland
 	@$(TOP)/tests/harness/vm-x86.sh $(if $(TEST),--test "$(TEST)")
 
 vm-arm:
