@@ -187,3 +187,39 @@ int ts7800_fpga_add_uarts(struct device *parent, struct regmap *map,
 	return nports;
 }
 EXPORT_SYMBOL_GPL(ts7800_fpga_add_uarts);
+
+/**
+ * ts7800_fpga_add_dio - register the DIO header child device
+ * @parent: FPGA device; the child reads and writes the DIO registers through
+ *	    the parent's regmap
+ *
+ * The FPGA has no known DIO interrupt source, so the child gets no
+ * interrupt: its driver polls for edges (docs/dio-i2c.md). The child is
+ * removed automatically (devres of @parent).
+ *
+ * Return: 0 or a negative error.
+ */
+int ts7800_fpga_add_dio(struct device *parent)
+{
+	struct platform_device_info info = { };
+	struct platform_device *pdev;
+	struct resource res;
+
+	memset(&res, 0, sizeof(res));
+	res.start = TS7800_DIO_IN;
+	res.end = TS7800_DIO_OUT + 1;
+	res.flags = IORESOURCE_REG;
+	res.name = "dio";
+
+	info.parent = parent;
+	info.name = TS7800_DIO_DEV_NAME;
+	info.id = PLATFORM_DEVID_NONE;
+	info.res = &res;
+	info.num_res = 1;
+
+	pdev = platform_device_register_full(&info);
+	if (IS_ERR(pdev))
+		return dev_err_probe(parent, PTR_ERR(pdev), "DIO header\n");
+	return devm_add_action_or_reset(parent, ts7800_fpga_remove_child, pdev);
+}
+EXPORT_SYMBOL_GPL(ts7800_fpga_add_dio);

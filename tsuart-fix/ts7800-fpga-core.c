@@ -2,7 +2,7 @@
 /*
  * TS-7800 FPGA core: maps the FPGA window, exposes it to the child drivers as
  * a 16-bit regmap, demultiplexes the FPGA interrupt sources and registers the
- * TS-UART children. Children never touch MMIO: they take the regmap with
+ * TS-UART and DIO header children. Children never touch MMIO: they take the regmap with
  * dev_get_regmap(parent) and their interrupt from their platform resources,
  * which lets the same child drivers run on the simulator (tests/sim/).
  *
@@ -73,6 +73,9 @@ static int ts7800_fpga_probe(struct platform_device *pdev)
 	nports = ts7800_fpga_add_uarts(dev, map, domain);
 	if (nports < 0)
 		return nports;
+	ret = ts7800_fpga_add_dio(dev);
+	if (ret)
+		return ret;
 
 	dev_info(dev, "TS-7800 FPGA revision %u, %d TS-UARTs\n", rev, nports);
 	return 0;

@@ -7,8 +7,11 @@
  * whose hwirq k is FPGA interrupt source k. The children are registered by
  * the core's own ts7800_fpga_add_uarts(), so the same TS-UART driver binds
  * to them. Behind the registers sits a model of the TS-UARTs
- * (ts7800-sim-uart.c), a wire per port (ts7800-sim-wire.c) and debugfs fault
- * injection (ts7800-sim-debugfs.c).
+ * (ts7800-sim-uart.c), a wire per port (ts7800-sim-wire.c), debugfs fault
+ * injection (ts7800-sim-debugfs.c), and the DIO header (ts7800-sim-dio.c)
+ * with the BR-FAN1 board's MAX6615 on two of its pins (ts7800-sim-i2c.c,
+ * ts7800-sim-max6615.c). The DIO child is registered by the core's
+ * ts7800_fpga_add_dio().
  */
 #include <linux/debugfs.h>
 #include <linux/irq.h>
@@ -270,6 +273,13 @@ static int sim_probe(struct platform_device *pdev)
 	ret = sim_setup_irq(sim);
 	if (ret)
 		return ret;
+	ret = sim_dio_init(sim);
+	if (ret)
+		return ret;
+	ret = sim_max6615_param_addr();
+	if (ret < 0)
+		return dev_err_probe(dev, ret, "bad max6615_addr\n");
+	sim_max6615_init(&sim->fan, ret);
 	for (n = 0; n < sim->nports; n++) {
 		ret = sim_uart_init(sim, &sim->uart[n], n);
 		if (ret)
@@ -296,6 +306,8 @@ static int sim_probe(struct platform_device *pdev)
 		return ret;
 
 	sim_debugfs_init(sim);
+	sim_dio_debugfs_init(sim);
+	sim_max6615_debugfs_init(sim);
 	ret = devm_add_action_or_reset(dev, sim_remove_debugfs, sim);
 	if (ret)
 		return ret;
@@ -310,6 +322,9 @@ static int sim_probe(struct platform_device *pdev)
 	nports = ts7800_fpga_add_uarts(dev, map, sim->domain);
 	if (nports < 0)
 		return nports;
+	ret = ts7800_fpga_add_dio(dev);
+	if (ret)
+		return ret;
 
 	dev_info(dev, "simulated TS-7800 FPGA rev %u: %d TS-UARTs, FIFO depth %u, %s interrupts\n",
 		 rev, nports, sim_fifo_depth, sim->edge ? "edge" : "level");
@@ -350,6 +365,6 @@ static void __exit sim_exit(void)
 }
 module_exit(sim_exit);
 
-MODULE_DESCRIPTION("Simulated TS-7800 FPGA with TS-UARTs (test only)");
+MODULE_DESCRIPTION("Simulated TS-7800 FPGA with TS-UARTs, DIO and a MAX6615 (test only)");
 MODULE_LICENSE("GPL");
 MODULE_INFO(test, "Y");

@@ -409,6 +409,12 @@ int sim_reg_read(void *context, unsigned int reg, unsigned int *val)
 	case TS7800_FPGA_PC104_ROWC_HI:
 		*val = sim_half(sim->rowc, reg);
 		break;
+	case TS7800_DIO_IN:
+		*val = sim_dio_read_in(sim);
+		break;
+	case TS7800_DIO_OUT:
+		*val = sim->dio.out;
+		break;
 	case TS7800_UART_BASE(0) ... TS7800_UART_BASE(TS7800_UART_MAX_PORTS) - 1:
 		u = sim_port_of(sim, reg);
 		if (!u)
@@ -447,6 +453,9 @@ int sim_reg_write(void *context, unsigned int reg, unsigned int val)
 	case TS7800_FPGA_PC104_ROWC_LO:
 	case TS7800_FPGA_PC104_ROWC_HI:
 		sim->rowc = sim_set_half(sim->rowc, reg, val);
+		break;
+	case TS7800_DIO_OUT:
+		sim_dio_write_out(sim, val);
 		break;
 	case TS7800_UART_BASE(0) ... TS7800_UART_BASE(TS7800_UART_MAX_PORTS) - 1:
 		u = sim_port_of(sim, reg);

@@ -99,6 +99,55 @@ struct sim_uart {
 	char nodename[32];
 };
 
+/*
+ * DIO header (ts7800-sim-dio.c): every pin is a wired-AND of the output
+ * latch, outside devices pulled low through debugfs and the simulated
+ * MAX6615 (SDA of its bus, its FAN_FAIL output).
+ */
+struct sim_dio {
+	u16 out;		/* output latch, offset 0x08 */
+	u16 ext_low;		/* pins held low by the outside (debugfs) */
+	u16 chip_low;		/* pins held low by the simulated MAX6615 */
+	unsigned int scl, sda;	/* header pins of the I2C bus */
+	unsigned int fan_fail;	/* header pin of the FAN_FAIL output */
+	unsigned int pause;	/* header pin of the robot's PAUSE signal */
+};
+
+/* Bit-level I2C slave (ts7800-sim-i2c.c). */
+enum sim_i2c_state {
+	SIM_I2C_IDLE,		/* waiting for a START */
+	SIM_I2C_ADDR,		/* receiving the address byte */
+	SIM_I2C_ADDR_ACK,	/* driving the ACK of the address */
+	SIM_I2C_WDATA,		/* receiving a data byte */
+	SIM_I2C_WDATA_ACK,	/* driving the ACK of a data byte */
+	SIM_I2C_RDATA,		/* sending a data byte */
+	SIM_I2C_RDATA_ACK,	/* sampling the master's ACK/NACK */
+};
+
+struct sim_i2c {
+	enum sim_i2c_state state;
+	bool scl, sda;		/* bus levels seen last */
+	bool drive_low;		/* the slave pulls SDA low */
+	bool read;		/* R/W bit of the current transfer */
+	bool first;		/* next written byte is the register pointer */
+	bool acked;		/* master's ACK of the last byte sent */
+	unsigned int bits;
+	u8 shift;
+	/* what the bus saw, for tests */
+	u32 starts, stops, addr_acks, addr_nacks;
+};
+
+/* Register model of a MAX6615 (ts7800-sim-max6615.c). */
+struct sim_max6615 {
+	u8 addr;		/* 7-bit bus address */
+	u8 reg[256];
+	u8 ptr;			/* register pointer */
+	int temp_mc[2];		/* temperatures, millidegrees C (debugfs) */
+	unsigned int rpm[2];	/* fan speeds (debugfs) */
+	bool fan_on[2][2];	/* auto mode hysteresis state per fan, channel */
+	ktime_t ramp_t[2];	/* when the instantaneous duty last stepped */
+};
+
 struct ts7800_sim {
 	struct device *dev;
 	spinlock_t lock;	/* the whole model, see the top of this file */
@@ -118,6 +167,10 @@ struct ts7800_sim {
 	struct irq_work irq_work;
 	struct irq_domain *domain;
 	struct fwnode_handle *fwnode;
+
+	struct sim_dio dio;
+	struct sim_i2c i2c;
+	struct sim_max6615 fan;
 
 	struct dentry *debugfs;
 };
@@ -143,6 +196,25 @@ void sim_uart_tx_kick(struct sim_uart *u);
 /* ts7800-sim-wire.c */
 int sim_wire_register(struct sim_uart *u);
 void sim_wire_unregister(struct sim_uart *u);
+
+/* ts7800-sim-dio.c (all with sim->lock held, except the debugfs setup) */
+int sim_dio_init(struct ts7800_sim *sim);
+u16 sim_dio_read_in(struct ts7800_sim *sim);
+void sim_dio_write_out(struct ts7800_sim *sim, u16 val);
+void sim_dio_update(struct ts7800_sim *sim);
+void sim_dio_debugfs_init(struct ts7800_sim *sim);
+
+/* ts7800-sim-i2c.c (sim->lock held) */
+void sim_i2c_bus(struct ts7800_sim *sim, bool scl, bool sda);
+
+/* ts7800-sim-max6615.c (sim->lock held, except init and debugfs setup) */
+int sim_max6615_param_addr(void);
+void sim_max6615_init(struct sim_max6615 *chip, u8 addr);
+void sim_max6615_update(struct sim_max6615 *chip);
+bool sim_max6615_fan_fail(struct sim_max6615 *chip);
+u8 sim_max6615_read(struct sim_max6615 *chip);
+void sim_max6615_write(struct sim_max6615 *chip, u8 val, bool pointer);
+void sim_max6615_debugfs_init(struct ts7800_sim *sim);
 
 /* ts7800-sim-debugfs.c */
 void sim_debugfs_init(struct ts7800_sim *sim);

@@ -77,6 +77,26 @@ struct regmap;
 #define TS7800_DATA_MASK8		0x0ff
 #define TS7800_DATA_MASK9		0x1ff
 
+/*
+ * DIO header (ts7800-notes 3.4): input levels at 0x04, output latch at 0x08,
+ * bit n-1 = header pin n. An output bit of 0 pulls the pin low, 1 releases it
+ * to its pull-up (thesis 7.2.1), so every pin is open-drain and reads back
+ * through the input register. Pins 2 and 16 are power, 6/10/12/14 the SPI
+ * lines (FRAME, MISO, MOSI, CLK): never handed out as GPIOs.
+ */
+#define TS7800_DIO_IN			0x004
+#define TS7800_DIO_OUT			0x008
+#define TS7800_DIO_NR_PINS		16
+#define TS7800_DIO_BIT(pin)		BIT((pin) - 1)
+#define TS7800_DIO_POWER_PINS		(TS7800_DIO_BIT(2) | TS7800_DIO_BIT(16))
+#define TS7800_DIO_SPI_PINS		(TS7800_DIO_BIT(6) | TS7800_DIO_BIT(10) | \
+					 TS7800_DIO_BIT(12) | TS7800_DIO_BIT(14))
+#define TS7800_DIO_RESERVED		(TS7800_DIO_POWER_PINS | TS7800_DIO_SPI_PINS)
+/* Child platform device name of the DIO header (one per FPGA). */
+#define TS7800_DIO_DEV_NAME		"ts7800-dio"
+/* Its child: the bit-banged I2C bus on two of its pins (BR-FAN1 board). */
+#define TS7800_DIO_I2C_DEV_NAME		"ts7800-dio-i2c"
+
 /* Nominal rate and the divisor the TS loader writes, per baud code. */
 struct ts7800_uart_rate {
 	unsigned int baud;
@@ -89,5 +109,6 @@ int ts7800_fpga_identify(struct regmap *map, u8 *revision);
 int ts7800_fpga_write_divisors(struct regmap *map);
 int ts7800_fpga_add_uarts(struct device *parent, struct regmap *map,
 			  struct irq_domain *domain);
+int ts7800_fpga_add_dio(struct device *parent);
 
 #endif /* _LINUX_TS7800_FPGA_H */

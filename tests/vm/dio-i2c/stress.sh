@@ -1,0 +1,51 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+# Malformed bus sequences between transfers never wedge the adapter: an
+# outside device toggles SCL/SDA at random (debugfs ext_low), or leaves the
+# slave in the middle of a read holding SDA low; the next transfer recovers
+# (nine clocks and a STOP when SDA is held) and reads the right value.
+. "$(dirname "$0")/lib.sh"
+trap cleanup_all EXIT
+
+ROUNDS=20
+TOGGLES=40
+
+tap_plan 5
+sim_load || { tap_diag "cannot load ts7800_dio + ts7800_sim"; exit 1; }
+adapter_load || { tap_diag "cannot load ts7800_dio_i2c"; exit 1; }
+SCL_LOW=$((1 << SCL_OFF))
+SDA_LOW=$((1 << SDA_OFF))
+ext() { echo "$1" >"$DIOFS/ext_low"; }
+devid() { i2cget -y "$I2C_BUS" "$CHIP_ADDR" 0xfe 2>/dev/null; }
+
+# 1. A read cut short after the address: the slave drives the first data
+# bit of FEh (0x68: bit 7 = 0) and keeps SDA low.
+devid >/dev/null	# register pointer = FEh
+ext $SDA_LOW					# START
+ext $((SDA_LOW | SCL_LOW))
+for b in 0 0 1 1 0 0 0 1; do			# 0x18 << 1 | read
+	v=$(( SCL_LOW | (b ? 0 : SDA_LOW) ))
+	ext $v; ext $((v & ~SCL_LOW)); ext $v
+done
+ext $SCL_LOW; ext 0; ext $SCL_LOW		# ACK clock (the slave acks)
+ext 0						# outside device lets go
+tap_is "a cut-short read leaves SDA held low by the slave" "$(pin_level $SDA_OFF)" 0
+stops0=$(awk '/^stops/ { print $2 }' "$CHIPFS/bus")
+tap_is "the next transfer recovers the bus and reads FEh = 0x68" "$(devid)" 0x68
+stops1=$(awk '/^stops/ { print $2 }' "$CHIPFS/bus")
+tap_ok "the recovery ended with a STOP the slave saw" test "$stops1" -gt "$stops0"
+
+# 2. Random toggles of both lines between transfers.
+ok=0 fails=""
+for r in $(seq $ROUNDS); do
+	for _t in $(seq $TOGGLES); do
+		ext $(( (RANDOM & 1 ? SCL_LOW : 0) | (RANDOM & 1 ? SDA_LOW : 0) ))
+	done
+	ext 0
+	v=$(devid)
+	if [ "$v" = 0x68 ]; then ok=$((ok + 1)); else fails="$fails $r:$v"; fi
+done
+tap_is "after $ROUNDS rounds of $TOGGLES random toggles the next transfer works" "$ok$fails" "$ROUNDS"
+tap_is "and the bus is idle afterwards" "$(pin_level $SCL_OFF)$(pin_level $SDA_OFF)" 11
+
+tap_finish
