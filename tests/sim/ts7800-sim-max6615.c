@@ -17,6 +17,7 @@
  */
 #include <linux/debugfs.h>
 #include <linux/kernel.h>
+#include <linux/math64.h>
 #include <linux/module.h>
 #include <linux/seq_file.h>
 
@@ -213,7 +214,7 @@ static void sim_max6615_duty(struct sim_max6615 *chip, unsigned int f, ktime_t n
 		return;
 	}
 	elapsed = ktime_to_ns(ktime_sub(now, chip->ramp_t[f]));
-	steps = min_t(u64, elapsed / period, 255);
+	steps = min_t(u64, div64_u64(elapsed, period), 255);
 	if (!steps)
 		return;
 	chip->ramp_t[f] = ktime_add_ns(chip->ramp_t[f], steps * period);
