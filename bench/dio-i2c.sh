@@ -11,7 +11,7 @@
 #   - one `sensors` run of the MAX6615: wall time and CPU time (user + sys,
 #     the bit-banging busy-waits in the kernel on the caller's behalf), and
 #     their ratios to the i2c-stub run.
-#   DIO_BENCH_RUNS  sensors runs averaged (default 10)
+#   DIO_BENCH_RUNS  sensors runs averaged per bus (default 10)
 set -euo pipefail
 RUNS=${DIO_BENCH_RUNS:-10}
 CONF=$(cd "$(dirname "$0")/.." && pwd)/i2c-max6615/advee-max6615.conf
@@ -23,6 +23,7 @@ cleanup() {
 	modprobe -r ts7800_sim 2>/dev/null || true
 	modprobe -r ts7800_dio ts_uart ts7800_fpga 2>/dev/null || true
 	[ $dbgfs_ours = 1 ] && { umount /sys/kernel/debug || true; }
+	return 0	# an EXIT trap's status would become the script's
 }
 trap cleanup EXIT
 
@@ -66,18 +67,30 @@ awk -v d="$dio_us" -v s="$stub_us" 'BEGIN {
 
 modprobe max6615
 hz=$(getconf CLK_TCK)
-# sensors_cost CHIP: "wall_ms cpu_ms" per sensors run, averaged over RUNS
-sensors_cost() {
-	sensors -c "$CONF" "$1" >/dev/null	# fills the driver's register cache
-	me=$BASHPID
+DCHIP=max6615-i2c-$DIO-18 SCHIP=max6615-i2c-$STUB-18
+sensors -c "$CONF" "$DCHIP" >/dev/null	# fill the driver's register caches
+sensors -c "$CONF" "$SCHIP" >/dev/null
+# Alternate the two buses run by run, so that the noise of this shared
+# machine hits both alike. CPU = user + sys ticks of the reaped sensors.
+me=$BASHPID
+dwall=0 dcpu=0 swall=0 scpu=0
+starts0=$(awk '/^starts/ { print $2 }' /sys/kernel/debug/ts7800-sim/max6615/bus)
+for _ in $(seq "$RUNS"); do
 	c0=$(cpu_ticks "$me") t0=$(now_ns)
-	for _ in $(seq "$RUNS"); do sensors -c "$CONF" "$1" >/dev/null; done
+	sensors -c "$CONF" "$DCHIP" >/dev/null
 	t1=$(now_ns) c1=$(cpu_ticks "$me")
-	echo "$(( (t1 - t0) / RUNS / 1000000 )) $(( (c1 - c0) * 1000 / hz / RUNS ))"
-}
-read -r dw dc <<<"$(sensors_cost "max6615-i2c-$DIO-18")"
-read -r sw sc <<<"$(sensors_cost "max6615-i2c-$STUB-18")"
-echo "one sensors run (cache warm, $RUNS runs): DIO wall $dw ms CPU $dc ms; i2c-stub wall $sw ms CPU $sc ms"
-awk -v dw="$dw" -v dc="$dc" -v sw="$sw" -v sc="$sc" 'BEGIN {
-	printf "  ratio CPU / wall on the DIO bus: %.2f (busy-wait bit-banging)\n", dc / (dw ? dw : 1)
-	printf "  ratio DIO / i2c-stub: wall %.1f, CPU %.1f\n", dw / (sw ? sw : 1), dc / (sc ? sc : 1) }'
+	sensors -c "$CONF" "$SCHIP" >/dev/null
+	t2=$(now_ns) c2=$(cpu_ticks "$me")
+	dwall=$((dwall + t1 - t0)) dcpu=$((dcpu + c1 - c0))
+	swall=$((swall + t2 - t1)) scpu=$((scpu + c2 - c1))
+done
+starts1=$(awk '/^starts/ { print $2 }' /sys/kernel/debug/ts7800-sim/max6615/bus)
+# a byte-data read is a START and a repeated START
+xfers=$(( (starts1 - starts0) / 2 / RUNS ))
+dw=$((dwall / RUNS / 1000000)) sw=$((swall / RUNS / 1000000))
+dc=$((dcpu * 1000 / hz / RUNS)) sc=$((scpu * 1000 / hz / RUNS))
+echo "one sensors run (cache warm, $RUNS runs each, alternating): DIO wall $dw ms CPU $dc ms; i2c-stub wall $sw ms CPU $sc ms; $xfers SMBus reads per run"
+awk -v dw="$dw" -v dc="$dc" -v sw="$sw" -v sc="$sc" -v x="$xfers" -v us="$dio_us" 'BEGIN {
+	printf "  ratio CPU / wall on the DIO bus: %.2f (bit-banging busy-waits)\n", dc / (dw ? dw : 1)
+	printf "  ratio DIO / i2c-stub: wall %.2f, CPU %.2f\n", dw / (sw ? sw : 1), dc / (sc ? sc : 1)
+	printf "  bus time (reads x byte-read latency) / DIO sensors wall: %.2f\n", x * us / 1000 / (dw ? dw : 1) }'

@@ -108,8 +108,11 @@ static int dio_i2c_probe(struct platform_device *pdev)
 	bus->sda = devm_gpiod_get(dev, "sda", GPIOD_OUT_HIGH_OPEN_DRAIN);
 	if (IS_ERR(bus->sda))
 		return dev_err_probe(dev, PTR_ERR(bus->sda), "SDA (DIO_%u)\n", sda_pin);
-	gpiod_set_consumer_name(bus->scl, "i2c-scl");
-	gpiod_set_consumer_name(bus->sda, "i2c-sda");
+	ret = gpiod_set_consumer_name(bus->scl, "i2c-scl");
+	if (!ret)
+		ret = gpiod_set_consumer_name(bus->sda, "i2c-sda");
+	if (ret)
+		return ret;
 
 	bus->bit.data = bus;
 	bus->bit.setsda = dio_i2c_setsda;
