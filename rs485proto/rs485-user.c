@@ -160,6 +160,8 @@ ssize_t rs485_write(struct tty_struct *tty, struct file *file, const u8 *buf, si
 		/* The request queue is full: wait until the worker took one. */
 		ret = wait_event_interruptible(tty->write_wait, rs485_queue_room(bus) ||
 					       test_bit(TTY_LDISC_CHANGING, &tty->flags));
+		if (!ret && test_bit(TTY_LDISC_CHANGING, &tty->flags))
+			ret = -EIO;	/* the discipline is being detached */
 		if (ret)
 			break;
 	}

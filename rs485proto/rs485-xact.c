@@ -64,16 +64,18 @@ int rs485_req_submit(struct rs485_bus *bus, struct rs485_req *req)
 }
 
 /*
- * Sleep until the worker completed @req. On a signal, or when the tty is
- * about to change its line discipline, a request still queued is withdrawn
- * and one on the bus is abandoned (the worker finishes it and drops it).
- * Returns 0 (result in @req), -EINTR or -EIO.
+ * Sleep until the worker completed @req. Returns 0 (result in @req), -EINTR
+ * on a signal, -EIO when the discipline goes away: the tty core sets
+ * TTY_LDISC_CHANGING and wakes sleepers before it detaches the discipline
+ * or hangs up, and cannot proceed while they stay inside it. A request still
+ * queued is withdrawn; one on the bus is left to the worker (it finishes the
+ * frame and consumes a late response, see the top of this file).
  */
 int rs485_req_wait(struct rs485_bus *bus, struct rs485_req *req)
 {
 	struct tty_struct *tty = bus->tty;
-	unsigned long flags;
 	bool withdrawn = false;
+	unsigned long flags;
 	int ret;
 
 	ret = wait_event_interruptible(tty->write_wait, READ_ONCE(req->done) ||

@@ -49,6 +49,29 @@ static void pending_vs(int fd, const char *what, int (*act)(int fd))
 	       strerror(p.err), now_s() - t0);
 }
 
+struct queued {
+	int fd;
+	int ret;
+	struct rs485_xfer x;
+};
+
+static void *queued_main(void *arg)
+{
+	struct queued *q = arg;
+
+	usleep(10000);		/* behind the slow one */
+	q->ret = xfer(q->fd, &q->x, SLAVE_ADDR, I_ECHO, 0, "queued", 6, 1000000, 0);
+	return NULL;
+}
+
+static void *slow_main(void *arg)
+{
+	struct queued *q = arg;
+
+	q->ret = xfer(q->fd, &q->x, SLAVE_ADDR, I_SLOW, 0, "slow", 4, 1000000, 0);
+	return NULL;
+}
+
 static int do_hangup(int fd)
 {
 	return ioctl(fd, TIOCVHANGUP);
@@ -71,7 +94,7 @@ int main(void)
 	int fd, fd2, ret, err;
 	double t0;
 
-	tap_plan(9);
+	tap_plan(10);
 	if (sim_load())
 		tap_bail("cannot load ts_uart + ts7800_sim");
 	fd = bus_open(PORT);
@@ -100,6 +123,26 @@ int main(void)
 	tap_ok(sh("rmmod n_rs485 2>/dev/null") != 0, "rmmod is refused while attached");
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, d, 4, 500000, 0);
 	tap_ok(ret == 0 && x.status == RS485_OK, "...and the bus still works");
+
+	/* another process opens the tty while a request waits in the queue */
+	{
+		struct queued slow = { .fd = fd }, q = { .fd = fd };
+		pthread_t ts, tq;
+		int fd3;
+
+		pthread_create(&ts, NULL, slow_main, &slow);
+		pthread_create(&tq, NULL, queued_main, &q);
+		usleep(40000);
+		fd3 = open("/dev/ttyTSU0", O_RDWR | O_NOCTTY);
+		pthread_join(tq, NULL);
+		pthread_join(ts, NULL);
+		tap_ok(fd3 >= 0 && q.ret == 0 && q.x.status == RS485_OK && q.x.resp.instr == I_ECHO &&
+		       q.x.resp.len == 6 && !memcmp(q.x.resp.data, "queued", 6),
+		       "a queued request survives another open() of the tty (slow one: ret %d)",
+		       slow.ret);
+		if (fd3 >= 0)
+			close(fd3);
+	}
 
 	pending_vs(fd, "detach (TIOCSETD N_TTY)", do_detach);
 
