@@ -85,6 +85,7 @@ static int dio_i2c_pre_xfer(struct i2c_adapter *adap)
 
 	if (gpiod_get_value(bus->sda) > 0)
 		return 0;
+	dev_dbg(&adap->dev, "SDA held low before a transfer: bus recovery\n");
 	ret = i2c_recover_bus(adap);
 	if (ret)
 		dev_warn_ratelimited(&adap->dev, "SDA held low, bus recovery failed: %d\n", ret);
