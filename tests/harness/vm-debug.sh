@@ -23,5 +23,12 @@ kver=$(cat "$entry/kver")
 	die "debug lane: the project's modules do not build against the debug kernel $kver"
 "$TOP/scripts/build-testprogs.sh" x86_64 ||
 	die "debug lane: the VM test programs do not build"
+# KASAN, lockdep and kmemleak under TCG make everything about SLOWDOWN times
+# slower: scale the program timeouts and the boot allowance. Kernel parameters:
+# pci=noacpi because the instrumented ACPI interpreter needs over 30 s per
+# PCI routing query (AE_AML_LOOP_TIMEOUT) and virtio uses MSI-X anyway;
+# kasan_multi_shot so that every KASAN report of a run is printed, not the first.
+export VMTEST_SLOWDOWN=${VMTEST_SLOWDOWN:-4}
+export VMTEST_APPEND="pci=noacpi kasan_multi_shot${VMTEST_APPEND:+ $VMTEST_APPEND}"
 exec "$TOP/tests/harness/vm-x86.sh" --kernel "$entry/bzImage" --kver "$kver" \
 	--modroot "$entry/modroot" --modules "$BUILD/kmod/debug/modules.list" --lane debug "$@"

@@ -20,7 +20,9 @@
 #              (default: the host's; make modules_install INSTALL_MOD_PATH=DIR)
 #   --run PROG run this one program (path on the host) instead of the suites,
 #              and print its output (used by make demo)
-# Environment: VMTEST_VERBOSE=1 streams the guest console; VMTEST_SMP, VMTEST_MEM.
+# Environment: VMTEST_VERBOSE=1 streams the guest console; VMTEST_SMP, VMTEST_MEM;
+#   VMTEST_SLOWDOWN=N multiplies every program timeout and the boot allowance
+#   (a slower kernel: the debug lane); VMTEST_APPEND adds kernel parameters.
 # Exit status: 0 when every test passed (or was skipped with a reason), 1 otherwise.
 set -euo pipefail
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
@@ -38,7 +40,7 @@ while [ $# -gt 0 ]; do
 	--lane) lane=$2; shift 2 ;;
 	--modroot) modbase=$(readlink -f "$2"); shift 2 ;;
 	--run) run=$(readlink -f "$2"); shift 2 ;;
-	-h|--help) sed -n '3,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '3,27p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-x86.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
@@ -101,6 +103,11 @@ if [ -n "$run" ]; then
 else
 	list_tests x86_64 "$BUILD/tests/x86_64" "${tests[@]}" >"$results/tests.list"
 fi
+slowdown=${VMTEST_SLOWDOWN:-1}
+if [ "$slowdown" != 1 ]; then
+	awk -v f="$slowdown" '{ $4 *= f; print }' "$results/tests.list" >"$results/tests.list.tmp"
+	mv "$results/tests.list.tmp" "$results/tests.list"
+fi
 if [ "${#tests[@]}" -gt 0 ] && [ ! -s "$results/tests.list" ]; then
 	die "no VM test matches: ${tests[*]} (suites: $(ls "$TOP/tests/vm" | tr '\n' ' '))"
 fi
@@ -125,10 +132,10 @@ qemu=(qemu-system-x86_64 -machine pc -accel tcg -cpu "${VMTEST_CPU:-max}" -smp "
 	-virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap
 	-virtfs "local,path=$results,mount_tag=results,security_model=none"
 	-virtfs "local,path=$TOP,mount_tag=repo,security_model=none,readonly=on,multidevs=remap")
-append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.repo=$TOP vmtest.runner=$TOP/tests/harness/guest-run.sh"
+append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.repo=$TOP vmtest.runner=$TOP/tests/harness/guest-run.sh${VMTEST_APPEND:+ $VMTEST_APPEND}"
 
 start=$(date +%s)
-boot_vm "$shell" 60 "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
+boot_vm "$shell" $((60 * slowdown)) "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
 if [ -n "$run" ]; then
 	cat "$results"/logs/main.*.log 2>/dev/null
 fi
