@@ -284,25 +284,42 @@ else
 fi
 
 # Leaks: allocated after boot, referenced by nothing now. Each report is named
-# after the program that was running when the object was allocated (its age
-# against the "vmtest: start" lines of the kernel log).
+# after the program that was running when the object was allocated, and the
+# allocating command. kmemleak gives the allocation time in jiffies, which
+# start at 2^32 - 300 * HZ (INITIAL_JIFFIES): one reading of jiffies and the
+# time in /proc/timer_list gives HZ, hence the uptime of each allocation, which
+# the "vmtest: start" lines of the kernel log turn into a program.
 if [ -n "$kmemleak" ]; then
 	echo "kmemleak scan" >"$R/current"
 	kmemleak_scan
 	cat "$kmemleak" >"$R/kmemleak.txt" 2>&1
 	if [ -s "$R/kmemleak.txt" ]; then
-		read -r now _ </proc/uptime
-		culprits=$(dmesg | awk -v now="$now" '
-			/vmtest: start / { t = $0; sub(/^\[ */, "", t); sub(/\].*/, "", t); start[++k] = t + 0; name[k] = $NF }
-			END { for (i = 1; i <= k; i++) print start[i], name[i] }' |
-			awk -v now="$now" 'NR == FNR { s[NR] = $1; nm[NR] = $2; k = NR; next }
-			/^unreferenced object/ { obj = $3 }
-			/age [0-9.]+s\)/ {
-				age = $0; sub(/.*age /, "", age); sub(/s\).*/, "", age)
-				born = now - age; who = "module-checks"
-				for (i = 1; i <= k; i++) if (s[i] <= born) who = nm[i]
-				print who
-			}' - "$R/kmemleak.txt" | sort | uniq -c | awk '{ printf "%s%s (%d)", sep, $2, $1; sep = ", " }')
+		culprits=$({
+			dmesg | grep 'vmtest: start '
+			echo TIMER
+			grep -m2 -E '^(now at|jiffies:) ' /proc/timer_list
+			echo LEAKS
+			cat "$R/kmemleak.txt"
+		} | awk '
+			/^TIMER$/ { part = 1; next }
+			/^LEAKS$/ { part = 2; next }
+			part == 0 { t = $0; sub(/^\[ */, "", t); sub(/\].*/, "", t); start[++k] = t + 0; name[k] = $NF; next }
+			part == 1 && /^now at / { now = $3 / 1e9; next }
+			part == 1 && /^jiffies: / { jnow = $2; next }
+			part == 2 && /^  comm "/ {
+				comm = $0; sub(/^  comm "/, "", comm); sub(/".*/, "", comm)
+				who = "?"
+				if (now > 0 && jnow != "" && now != 300) {
+					hz = (jnow - 4294967296) / (now - 300)
+					best = 100
+					split("250 300 1000", cand, " ")
+					for (c in cand) if ((cand[c] - hz) ^ 2 < (best - hz) ^ 2) best = cand[c]
+					born = ($NF - 4294967296) / best + 300
+					who = "module-checks"
+					for (i = 1; i <= k; i++) if (start[i] <= born) who = name[i]
+				}
+				print who " (" comm ")"
+			}' | sort | uniq -c | awk '{ n = $1; sub(/^ *[0-9]+ /, ""); printf "%s%s x%d", sep, $0, n; sep = ", " }')
 		ok_point fail "no kernel memory leaks (kmemleak)" "$(grep -c '^unreferenced object' "$R/kmemleak.txt") leak(s), allocated during: $culprits; see kmemleak.txt"
 		sed 's/^/# kmemleak: /' "$R/kmemleak.txt" | head -40 | tee -a "$R/tap.txt"
 	else
