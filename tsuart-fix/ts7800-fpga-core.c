@@ -109,6 +109,6 @@ static void __exit ts7800_fpga_exit(void)
 }
 module_exit(ts7800_fpga_exit);
 
-MODULE_DESCRIPTION("TS-7800 FPGA core: regmap, interrupt demultiplexer, TS-UART children");
+MODULE_DESCRIPTION("TS-7800 FPGA core: regmap, interrupt demultiplexer, TS-UART and DIO children");
 MODULE_LICENSE("GPL");
 MODULE_ALIAS("platform:" TS7800_FPGA_DRV_NAME);

@@ -282,13 +282,6 @@ void sim_max6615_write(struct sim_max6615 *chip, u8 val, bool pointer)
 
 /* debugfs ---------------------------------------------------------------- */
 
-struct sim_chip_knob {
-	struct ts7800_sim *sim;
-	unsigned int idx;
-};
-
-static struct sim_chip_knob sim_knobs[2];
-
 static int temp_get(void *data, u64 *val)
 {
 	struct sim_chip_knob *k = data;
@@ -378,16 +371,17 @@ DEFINE_SHOW_ATTRIBUTE(bus);
 void sim_max6615_debugfs_init(struct ts7800_sim *sim)
 {
 	struct dentry *dir = debugfs_create_dir("max6615", sim->debugfs);
+	struct sim_chip_knob *knobs = sim->fan.knobs;
 	unsigned int i;
 
 	for (i = 0; i < 2; i++) {
-		sim_knobs[i].sim = sim;
-		sim_knobs[i].idx = i;
+		knobs[i].sim = sim;
+		knobs[i].idx = i;
 	}
-	debugfs_create_file_unsafe("temp1", 0600, dir, &sim_knobs[0], &temp_fops);
-	debugfs_create_file_unsafe("temp2", 0600, dir, &sim_knobs[1], &temp_fops);
-	debugfs_create_file_unsafe("fan1_rpm", 0600, dir, &sim_knobs[0], &rpm_fops);
-	debugfs_create_file_unsafe("fan2_rpm", 0600, dir, &sim_knobs[1], &rpm_fops);
+	debugfs_create_file_unsafe("temp1", 0600, dir, &knobs[0], &temp_fops);
+	debugfs_create_file_unsafe("temp2", 0600, dir, &knobs[1], &temp_fops);
+	debugfs_create_file_unsafe("fan1_rpm", 0600, dir, &knobs[0], &rpm_fops);
+	debugfs_create_file_unsafe("fan2_rpm", 0600, dir, &knobs[1], &rpm_fops);
 	debugfs_create_file("regs", 0400, dir, sim, &regs_fops);
 	debugfs_create_file("bus", 0400, dir, sim, &bus_fops);
 }

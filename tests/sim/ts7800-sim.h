@@ -6,6 +6,7 @@
  * from the drivers, the per-port character engines (hrtimers, hard irq
  * context), the wires and debugfs. Cross-connected ports deliver into each
  * other under it, so one lock avoids any lock ordering between ports.
+ * The DIO pins, the I2C slave and the MAX6615 model live under the same lock.
  * irq_lock (nested inside lock) guards the interrupt state, which the irq_chip
  * callbacks also reach from genirq without the model lock.
  */
@@ -137,6 +138,12 @@ struct sim_i2c {
 	u32 starts, stops, addr_acks, addr_nacks;
 };
 
+/* One debugfs file of the MAX6615 model: a channel (temperature or fan). */
+struct sim_chip_knob {
+	struct ts7800_sim *sim;
+	unsigned int idx;
+};
+
 /* Register model of a MAX6615 (ts7800-sim-max6615.c). */
 struct sim_max6615 {
 	u8 addr;		/* 7-bit bus address */
@@ -146,6 +153,7 @@ struct sim_max6615 {
 	unsigned int rpm[2];	/* fan speeds (debugfs) */
 	bool fan_on[2][2];	/* auto mode hysteresis state per fan, channel */
 	ktime_t ramp_t[2];	/* when the instantaneous duty last stepped */
+	struct sim_chip_knob knobs[2];
 };
 
 struct ts7800_sim {
