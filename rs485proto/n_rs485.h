@@ -51,6 +51,18 @@ struct rs485_rx {
 	bool lenient;			/* under bus->lock */
 	unsigned int pos;		/* bytes of frame.buf filled */
 	u8 buf[RS485_MAX_FRAME];	/* ADDR INSTR FLAGS LEN DATA */
+	/*
+	 * The characters of the frame in progress as received (with their
+	 * parity flag) and whether leniency decided anything in it: if such a
+	 * frame fails its CRC, its characters after the first are parsed again
+	 * by their flags, so that a wrong guess costs no valid frame.
+	 */
+	bool guessed;
+	unsigned int nraw;
+	u8 raw[RS485_WIRE_MAX];
+	bool raw_parity[RS485_WIRE_MAX];
+	u8 replay[RS485_WIRE_MAX];
+	bool replay_parity[RS485_WIRE_MAX];
 };
 
 /* What the worker waits for after sending a request that expects a response. */

@@ -17,7 +17,8 @@
  * is lenient: it trusts the length field instead of the flags, so that an
  * event frame of the slave that overlaps the switch is not lost: inside a
  * frame every character is data, and outside one any character starts one.
- * The CRC still decides whether the frame is valid.
+ * The CRC still decides whether the frame is valid; a frame in which such a
+ * guess mattered and that fails its CRC is parsed again by the flags.
  *
  * Runs only from receive_buf (one call at a time per tty), so rx needs no
  * lock; what it hands on is passed under bus->lock.
@@ -49,14 +50,55 @@ static void rs485_rx_deliver(struct rs485_bus *bus)
 		rs485_event_queue(bus, frame, len);
 }
 
+static void rs485_rx_replay(struct rs485_bus *bus);
+
 static void rs485_rx_start(struct rs485_bus *bus, u8 addr)
 {
-	if (bus->rx.state != RS485_RX_IDLE)
+	struct rs485_rx *rx = &bus->rx;
+
+	/* A guessed frame cut short may have swallowed the start of others. */
+	if (rx->state != RS485_RX_IDLE && rx->guessed)
+		rs485_rx_replay(bus);
+	if (rx->state != RS485_RX_IDLE)
 		rs485_rx_count(bus, &bus->stats.rx_truncated);
-	bus->rx.buf[0] = addr;
-	bus->rx.pos = 1;
-	bus->rx.state = RS485_RX_HEADER;
+	rx->buf[0] = addr;
+	rx->pos = 1;
+	rx->state = RS485_RX_HEADER;
+	rx->guessed = false;
+	rx->nraw = 0;
 	rs485_rx_addr_seen(bus, addr);
+}
+
+static void rs485_rx_char(struct rs485_bus *bus, u8 c, bool parity, bool lenient);
+
+/* Parse the characters of a failed frame again, after its first, by their flags. */
+static void rs485_rx_replay(struct rs485_bus *bus)
+{
+	struct rs485_rx *rx = &bus->rx;
+	unsigned int i, n = rx->nraw;
+
+	memcpy(rx->replay, rx->raw, n);
+	memcpy(rx->replay_parity, rx->raw_parity, n * sizeof(rx->raw_parity[0]));
+	rs485_rx_reset(bus);
+	for (i = 1; i < n; i++)
+		rs485_rx_char(bus, rx->replay[i], rx->replay_parity[i], false);
+}
+
+static void rs485_rx_crc(struct rs485_bus *bus, u8 c)
+{
+	struct rs485_rx *rx = &bus->rx;
+
+	rx->state = RS485_RX_IDLE;
+	if (rs485_crc(rx->buf, rx->pos) == c) {
+		rs485_rx_deliver(bus);
+		return;
+	}
+	if (rx->guessed) {
+		rs485_rx_replay(bus);
+		return;
+	}
+	rs485_rx_count(bus, &bus->stats.rx_crc_errors);
+	rs485_rx_corrupt_from(bus, rx->buf[0]);
 }
 
 static void rs485_rx_data(struct rs485_bus *bus, u8 c)
@@ -79,15 +121,27 @@ static void rs485_rx_data(struct rs485_bus *bus, u8 c)
 			rx->state = RS485_RX_CRC;
 		return;
 	case RS485_RX_CRC:
-		rx->state = RS485_RX_IDLE;
-		if (rs485_crc(rx->buf, rx->pos) != c) {
-			rs485_rx_count(bus, &bus->stats.rx_crc_errors);
-			rs485_rx_corrupt_from(bus, rx->buf[0]);
-			return;
-		}
-		rs485_rx_deliver(bus);
+		rs485_rx_crc(bus, c);
 		return;
 	}
+}
+
+/* One character without an error flag; @parity: it came flagged TTY_PARITY. */
+static void rs485_rx_char(struct rs485_bus *bus, u8 c, bool parity, bool lenient)
+{
+	struct rs485_rx *rx = &bus->rx;
+	bool start = lenient ? rx->state == RS485_RX_IDLE : parity;
+
+	if (start)
+		rs485_rx_start(bus, c);
+	if (rx->state != RS485_RX_IDLE) {
+		rx->guessed |= start != parity;
+		rx->raw[rx->nraw] = c;
+		rx->raw_parity[rx->nraw] = parity;
+		rx->nraw++;
+	}
+	if (!start)
+		rs485_rx_data(bus, c);
 }
 
 void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int count)
@@ -111,10 +165,7 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 		switch (flag) {
 		case TTY_NORMAL:
 		case TTY_PARITY:
-			if (lenient ? bus->rx.state == RS485_RX_IDLE : flag == TTY_PARITY)
-				rs485_rx_start(bus, cp[i]);
-			else
-				rs485_rx_data(bus, cp[i]);
+			rs485_rx_char(bus, cp[i], flag == TTY_PARITY, lenient);
 			break;
 		case TTY_OVERRUN:
 			/* An extra NUL: a character was lost before this point. */

@@ -3,7 +3,8 @@
  * concurrency - 8 processes share one bus for DURATION seconds while the
  * slave also sends unsolicited event frames (a full-duplex link): every
  * transaction gets its own response byte-exact, every event reaches read()
- * in order and byte-exact and none reaches a transaction, the statistics
+ * in order and byte-exact (only frames hit by a reported UART overrun may
+ * be missing) and none reaches a transaction, the statistics
  * add up (xfers = ok + failed), and the processes got turns fairly.
  * (The issue asks for 60 s; 20 s keeps the suite's run time modest.)
  */
@@ -53,7 +54,7 @@ static void child(int fd, int id, int out)
 struct reader {
 	int fd;
 	atomic_int stop;
-	unsigned int got, bad, non_event;
+	unsigned int got, bad, lost, non_event;
 	uint32_t next;
 };
 
@@ -74,18 +75,24 @@ static void *reader_main(void *arg)
 			r->non_event++;
 			continue;
 		}
-		event_frame(r->next, want);
-		if (n == 8 && !memcmp(buf, want, 8)) {
-			r->got++;
-			r->next++;
-		} else {
+		if (n == 8) {
 			uint32_t seq;
 
 			memcpy(&seq, buf + 4, 4);
-			tap_diag("event: got seq %u (len %zd), expected %u", seq, n, r->next);
-			r->bad++;
-			r->next = seq + 1;
+			if (seq > r->next) {
+				tap_diag("events %u..%u missing", r->next, seq - 1);
+				r->lost += seq - r->next;
+				r->next = seq;
+			}
+			event_frame(r->next, want);
+			if (!memcmp(buf, want, 8)) {
+				r->got++;
+				r->next++;
+				continue;
+			}
 		}
+		tap_diag("event frame of %zd bytes is not event %u", n, r->next);
+		r->bad++;
 	}
 	return NULL;
 }
@@ -127,7 +134,7 @@ int main(void)
 		if (!WIFEXITED(status) || WEXITSTATUS(status))
 			exits_ok = 0;
 	s.stop = 1;
-	usleep(300000);		/* the last event arrives */
+	usleep(1000000);	/* the last event arrives (also on a slow debug kernel) */
 	rd.stop = 1;
 	pthread_join(rt, NULL);
 	slave_stop(&s);
@@ -142,11 +149,12 @@ int main(void)
 			 res[i].failed);
 	}
 	get_stats(fd, &st);
-	tap_diag("stats: xfers %llu ok %llu failed %llu retries %llu timeouts %llu crc %llu truncated %llu noise %llu events %llu dropped %llu",
+	tap_diag("stats: xfers %llu ok %llu failed %llu retries %llu timeouts %llu crc %llu truncated %llu noise %llu overruns %llu framing %llu events %llu dropped %llu",
 		 (unsigned long long)st.xfers, (unsigned long long)st.xfers_ok,
 		 (unsigned long long)st.xfers_failed, (unsigned long long)st.retries,
 		 (unsigned long long)st.timeouts, (unsigned long long)st.rx_crc_errors,
 		 (unsigned long long)st.rx_truncated, (unsigned long long)st.rx_noise,
+		 (unsigned long long)st.rx_overruns, (unsigned long long)st.rx_framing,
 		 (unsigned long long)st.events, (unsigned long long)st.events_dropped);
 	tap_ok(exits_ok && sum.ok > 0 && sum.wrong == 0 && sum.failed == 0,
 	       "%d processes, %u transactions in %d s: every one answered correctly (%u wrong, %u failed)",
@@ -158,9 +166,15 @@ int main(void)
 	tap_ok(min_ok * 2 >= max_ok, "fair turns: fewest %u, most %u transactions per process",
 	       min_ok, max_ok);
 	tap_ok(rd.non_event == 0, "no response went to read() (%u)", rd.non_event);
-	tap_ok(rd.bad == 0, "events arrive in order and byte-exact (%u out of order)", rd.bad);
-	tap_ok(rd.got == s.events_sent, "every event reached read(): %u of %u", rd.got,
-	       s.events_sent);
+	tap_ok(rd.bad == 0, "events arrive in order and byte-exact (%u wrong)", rd.bad);
+	/*
+	 * An overrun (the emulated CPU did not serve the 16-deep FIFO in time)
+	 * loses characters: the frame they belonged to, and the next one if its
+	 * address character was among them. Nothing else may lose an event.
+	 */
+	tap_ok(rd.got <= s.events_sent && s.events_sent - rd.got <= 2 * st.rx_overruns,
+	       "every event reached read() but those hit by overruns: %u of %u (%llu overruns)",
+	       rd.got, s.events_sent, (unsigned long long)st.rx_overruns);
 	close(fd);
 	sim_unload();
 	return tap_finish();
