@@ -5,11 +5,13 @@
 # command, and CI's). Installs what is missing, then runs, in order:
 #   kernel gates (W=1 on x86_64/armhf/armel, checkpatch --strict, sparse),
 #   unit tests (CTest, plain and ASan/UBSan), ARM userland cross builds,
-#   the x86_64 VM lane and the armhf VM lane.
+#   the x86_64 VM lane, the armhf VM lane and the debug-kernel VM lane (KASAN,
+#   lockdep, kmemleak, UBSAN; its kernel is built once and cached, see
+#   scripts/debug-kernel.sh).
 # Every stage runs even if an earlier one failed; the last line counts every
 # TAP test point and every CTest test: "N passed, N failed, N skipped".
 # With --test, only the x86_64 VM lane runs that suite (or suite/program); set
-# VMTEST_LANES="x86_64 armhf" to run it on the ARM lane too.
+# VMTEST_LANES="x86_64 armhf debug" to run it on the other lanes too.
 set -uo pipefail
 . "$(dirname "$0")/lib.sh"
 
@@ -17,7 +19,7 @@ tests=()
 while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=(--test "$2"); shift 2 ;;
-	-h|--help) sed -n '3,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '3,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "check.sh: unknown argument $1" ;;
 	esac
 done
@@ -50,10 +52,13 @@ if [ "${#tests[@]}" -eq 0 ]; then
 		stage "userland cross build ($a)" "$TOP/scripts/build-userland.sh" "$a"
 		stage_row "userland cross build ($a)" $?
 	done
-	lanes=${VMTEST_LANES:-x86_64 armhf}
+	lanes=${VMTEST_LANES:-x86_64 armhf debug}
 else
 	stage "kernel modules (x86_64)" "$TOP/scripts/build-kmod.sh" x86_64
 	stage_row "kernel modules (x86_64)" $?
+	# VM suites run user-space programs from build/userland (simulators, tools).
+	stage "userland (native)" "$TOP/scripts/build-userland.sh" native
+	stage_row "userland (native)" $?
 	lanes=${VMTEST_LANES:-x86_64}
 fi
 
@@ -70,6 +75,17 @@ for lane in $lanes; do
 		stage "test programs (armhf)" "$TOP/scripts/build-testprogs.sh" armhf
 		stage_row "test programs (armhf)" $?
 		stage "armhf VM lane" "$TOP/tests/harness/vm-arm.sh" "${tests[@]}"
+		;;
+	debug)
+		# vm-debug.sh builds (or reuses) the debug kernel and our modules for
+		# it; when that fails, no test ran: a failure, never a silent skip.
+		rm -f "$BUILD/results/debug.tsv"
+		stage "debug-kernel VM lane" "$TOP/tests/harness/vm-debug.sh" "${tests[@]}"
+		if [ ! -s "$BUILD/results/debug.tsv" ]; then
+			say "FAILED: the debug lane did not run: its kernel, our modules for it or its VM could not be set up (see above)"
+			printf 'debug: lane did not run\t0\t1\t0\tfail\tdebug kernel, its modules or its VM could not be set up\n' \
+				>>"$BUILD/results/stages.tsv"
+		fi
 		;;
 	*) die "unknown lane $lane" ;;
 	esac
