@@ -11,7 +11,7 @@
 #   make deps            install what this machine lacks (idempotent)
 #   make gates           W=1 + checkpatch --strict + sparse on the kernel sources
 #   make unit            CTest (plain and ASan/UBSan)
-#   make vm-x86 / vm-arm one VM lane
+#   make vm-x86 / vm-arm / vm-debug  one VM lane (vm-debug: KASAN/lockdep kernel)
 #   make bench           the benchmarks: VM programs named bench* (TEST= selects)
 #   make clean
 #
@@ -33,7 +33,7 @@ TEST ?=
 export KVER KDIR TOP BUILD
 
 .PHONY: all default modules userland testprogs arm arm-modules arm-userland arm-testprogs \
-	check unit unit-asan gates vm-x86 vm-arm bench demo deps clean help
+	check unit unit-asan gates vm-x86 vm-arm vm-debug bench demo deps clean help
 
 ifeq ($(ARCH),arm)
 default: arm
@@ -93,6 +93,9 @@ vm-arm:
 	@$(TOP)/scripts/build-kmod.sh armhf
 	@$(TOP)/scripts/build-testprogs.sh armhf
 	@$(TOP)/tests/harness/vm-arm.sh $(if $(TEST),--test "$(TEST)")
+
+vm-debug:
+	@$(TOP)/tests/harness/vm-debug.sh $(if $(TEST),--test "$(TEST)")
 
 bench: modules testprogs userland
 	@VMTEST_BENCH=1 $(TOP)/tests/harness/vm-x86.sh --lane bench $(if $(TEST),--test "$(TEST)")
