@@ -102,14 +102,12 @@ class CommandStream final : public TimedService {
   void poll() override {
     if (!running_ || master_.now() < next_) return;
     send_();
-    last_sent_ = master_.now();
     next_ += period_;
   }
   std::optional<TimePoint> deadline() const override {
     if (!running_) return std::nullopt;
     return next_;
   }
-  TimePoint last_sent() const { return last_sent_; }
 
  private:
   Master& master_;
@@ -117,7 +115,6 @@ class CommandStream final : public TimedService {
   std::function<void()> send_;
   bool running_ = false;
   TimePoint next_{};
-  TimePoint last_sent_{};
 };
 
 std::error_code check(bool ok) { return ok ? std::error_code{} : make_error_code(AxisError::kNotReady); }
@@ -193,6 +190,10 @@ int main(int argc, char** argv) {
       if (on_command) on_command();
     });
     std::optional<TimePoint> watchdog_fired;
+    // Taken just before each feed: the watchdog counts from its feed, which
+    // comes after the PDO send, so the stream's own send time would be late
+    // by a system call (2 ms on the debug kernel) and fail a correct watchdog.
+    TimePoint last_command{};
     Script script(master);
     bool expect_watchdog = false;
     MotionWatchdog watchdog(master, 1s, [&] {
@@ -200,7 +201,7 @@ int main(int argc, char** argv) {
       std::printf("# motion command timeout: quick stop\n");
       epos.quick_stop([&](std::error_code e) {
         if (!expect_watchdog) return;
-        const auto gap = std::chrono::duration_cast<std::chrono::milliseconds>(*watchdog_fired - stream.last_sent());
+        const auto gap = std::chrono::duration_cast<std::chrono::milliseconds>(*watchdog_fired - last_command);
         std::printf("# quick stop %s, %lld ms after the last command\n", e ? e.message().c_str() : "done",
                     static_cast<long long>(gap.count()));
         const bool ok = !e && gap >= 1000ms && epos.drive().axis().state() == cia402::State::kQuickStopActive;
@@ -210,7 +211,10 @@ int main(int argc, char** argv) {
       });
     });
     // Each motion command feeds the watchdog, whatever the scenario.
-    on_command = [&] { watchdog.feed(); };
+    on_command = [&] {
+      last_command = master.now();
+      watchdog.feed();
+    };
     auto drive_at = [&](double v) {
       speed = v;
       stream.start();
