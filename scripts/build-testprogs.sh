@@ -26,8 +26,10 @@ for suite_dir in "$TOP"/tests/vm/*/; do
 		[ -e "$src" ] || continue
 		bin=$out/$suite/$(basename "$src" .c)
 		mkdir -p "$out/$suite"
-		if [ ! -e "$bin" ] || [ "$src" -nt "$bin" ] || [ "$TOP/tests/lib/tap.h" -nt "$bin" ] ||
-		   [ -n "$(find "$TOP/kernel/include/uapi" -newer "$bin" -print -quit 2>/dev/null)" ]; then
+		# Rebuild when the program or any header it can include is newer.
+		if [ ! -e "$bin" ] || [ "$src" -nt "$bin" ] ||
+		   [ -n "$(find "$TOP/tests/lib" "$suite_dir" "$TOP/kernel/include/uapi" -name '*.h' \
+			-newer "$bin" -print -quit 2>/dev/null)" ]; then
 			"$cc" "${cflags[@]}" -o "$bin" "$src" || die "cannot build test program $src for $target"
 		fi
 		n=$((n + 1))

@@ -11,30 +11,10 @@
 #include <unistd.h>
 
 #include "tap.h"
+#include "vmtest.h"
 
 #define DEV "/dev/vmtest-echo"
 #define FIFO_SIZE 4096
-
-static int run(const char *cmd)
-{
-	int st = system(cmd);
-
-	return st == -1 ? -1 : WEXITSTATUS(st);
-}
-
-static int wait_for_node(const char *path)
-{
-	struct stat sb;
-	int i;
-
-	/* devtmpfs creates the node asynchronously after misc_register(). */
-	for (i = 0; i < 100; i++) {
-		if (!stat(path, &sb))
-			return 0;
-		usleep(10000);
-	}
-	return -1;
-}
 
 int main(void)
 {
@@ -46,7 +26,7 @@ int main(void)
 
 	tap_plan(7);
 
-	if (!tap_ok(run("modprobe vmtest_echo") == 0 && wait_for_node(DEV) == 0,
+	if (!tap_ok(sh("modprobe vmtest_echo") == 0 && wait_for_path(DEV) == 0,
 		    "modprobe vmtest_echo creates " DEV))
 		tap_bail("cannot continue without the device");
 
@@ -76,7 +56,7 @@ int main(void)
 	       "empty device: poll shows no input, read says EAGAIN");
 	close(fd);
 
-	tap_ok(run("modprobe -r vmtest_echo") == 0 && access(DEV, F_OK) != 0,
+	tap_ok(sh("modprobe -r vmtest_echo") == 0 && access(DEV, F_OK) != 0,
 	       "modprobe -r vmtest_echo removes the device");
 
 	return tap_finish();

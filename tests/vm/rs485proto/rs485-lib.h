@@ -23,6 +23,7 @@
 #include <linux/ts7800_sim.h>
 
 #include "tap.h"
+#include "vmtest.h"
 
 #define SLAVE_ADDR	0x10
 #define OTHER_ADDR	0x11
@@ -40,40 +41,6 @@ enum {
 	I_COUNT = 0x09,		/* ACK, data = u32 count of executions of this instr */
 	I_SLOW = 0x0a,		/* ACK after 100 ms, data = request data */
 };
-
-static inline int sh(const char *fmt, ...)
-{
-	char cmd[512];
-	va_list ap;
-	int st;
-
-	va_start(ap, fmt);
-	vsnprintf(cmd, sizeof(cmd), fmt, ap);
-	va_end(ap);
-	st = system(cmd);
-	return st == -1 ? -1 : WEXITSTATUS(st);
-}
-
-static inline double now_s(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec / 1e9;
-}
-
-static inline int wait_for_path(const char *path)
-{
-	struct stat sb;
-	int i;
-
-	for (i = 0; i < 300; i++) {
-		if (!stat(path, &sb))
-			return 0;
-		usleep(10000);
-	}
-	return -1;
-}
 
 static inline int sim_load(void)
 {

@@ -21,6 +21,7 @@
 #include <linux/ts7800_sim.h>
 
 #include "tap.h"
+#include "vmtest.h"
 
 #define NPORTS 10
 #define DEBUGFS "/sys/kernel/debug/ts7800-sim"
@@ -34,41 +35,6 @@ static const struct rate rates[] = {
 	{ 115200, B115200 }, { 57600, B57600 }, { 38400, B38400 }, { 19200, B19200 },
 	{ 9600, B9600 }, { 4800, B4800 }, { 2400, B2400 },
 };
-
-static inline int sh(const char *fmt, ...)
-{
-	char cmd[512];
-	va_list ap;
-	int st;
-
-	va_start(ap, fmt);
-	vsnprintf(cmd, sizeof(cmd), fmt, ap);
-	va_end(ap);
-	st = system(cmd);
-	return st == -1 ? -1 : WEXITSTATUS(st);
-}
-
-static inline double now_s(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec / 1e9;
-}
-
-static inline int wait_for_path(const char *path)
-{
-	struct stat sb;
-	int i;
-
-	/* devtmpfs nodes appear asynchronously after registration. */
-	for (i = 0; i < 300; i++) {
-		if (!stat(path, &sb))
-			return 0;
-		usleep(10000);
-	}
-	return -1;
-}
 
 static inline int wait_ports(int nports)
 {

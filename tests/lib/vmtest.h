@@ -1,0 +1,54 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * vmtest.h - small helpers shared by the C programs of the VM suites.
+ * Header-only, like tap.h; include it after tap.h.
+ */
+#ifndef VMTEST_VMTEST_H
+#define VMTEST_VMTEST_H
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+/* Run a shell command built like printf; returns its exit status (-1: not run). */
+static inline int sh(const char *fmt, ...)
+{
+	char cmd[512];
+	va_list ap;
+	int st;
+
+	va_start(ap, fmt);
+	vsnprintf(cmd, sizeof(cmd), fmt, ap);
+	va_end(ap);
+	st = system(cmd);
+	return st == -1 ? -1 : WEXITSTATUS(st);
+}
+
+/* CLOCK_MONOTONIC in seconds. */
+static inline double now_s(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + ts.tv_nsec / 1e9;
+}
+
+/* Wait up to 3 s for a path: devtmpfs nodes appear asynchronously after registration. */
+static inline int wait_for_path(const char *path)
+{
+	struct stat sb;
+	int i;
+
+	for (i = 0; i < 300; i++) {
+		if (!stat(path, &sb))
+			return 0;
+		usleep(10000);
+	}
+	return -1;
+}
+
+#endif /* VMTEST_VMTEST_H */
