@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "advee/canopen/byte_order.hpp"
+#include "advee/byte_order.hpp"
 
 namespace advee::canopen {
 

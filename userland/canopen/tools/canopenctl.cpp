@@ -14,11 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "advee/byte_order.hpp"
 #include "advee/canopen/axis402.hpp"
 #include "advee/canopen/pdo_config.hpp"
 #include "advee/canopen/runtime.hpp"
 
 using namespace advee::canopen;
+using advee::load_le;
+using advee::store_le;
 using namespace std::chrono_literals;
 
 namespace {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "advee/canopen/clock.hpp"
-#include "advee/canopen/unique_fd.hpp"
+#include "advee/unique_fd.hpp"
 
 namespace advee::canopen {
 

@@ -15,7 +15,7 @@
 #include <system_error>
 #include <vector>
 
-#include "advee/canopen/byte_order.hpp"
+#include "advee/byte_order.hpp"
 #include "advee/canopen/clock.hpp"
 #include "advee/canopen/frame.hpp"
 #include "advee/canopen/sdo_abort.hpp"

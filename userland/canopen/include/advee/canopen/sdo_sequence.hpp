@@ -9,7 +9,7 @@
 #include <system_error>
 #include <vector>
 
-#include "advee/canopen/byte_order.hpp"
+#include "advee/byte_order.hpp"
 #include "advee/canopen/sdo_client.hpp"
 
 namespace advee::canopen {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "advee/canopen/frame.hpp"
-#include "advee/canopen/unique_fd.hpp"
+#include "advee/unique_fd.hpp"
 
 struct can_frame;
 

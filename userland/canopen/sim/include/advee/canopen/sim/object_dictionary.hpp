@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "advee/canopen/byte_order.hpp"
+#include "advee/byte_order.hpp"
 #include "advee/canopen/sdo_abort.hpp"
 
 namespace advee::canopen::sim {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
-// CANopen is little-endian on the wire; these helpers keep that in one place.
+// Little-endian field helpers shared by the CANopen and RS-485 codecs (both
+// protocols put multi-byte values on the wire little-endian).
 #pragma once
 
 #include <cstddef>
@@ -8,7 +9,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace advee::canopen {
+namespace advee {
 
 template <typename T>
   requires std::is_integral_v<T>
@@ -42,4 +43,4 @@ std::vector<std::uint8_t> to_bytes(T value) {
   return v;
 }
 
-}  // namespace advee::canopen
+}  // namespace advee
