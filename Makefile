@@ -27,7 +27,7 @@ KVER ?= $(shell $(TOP)/scripts/kver.sh)
 KDIR ?= /usr/src/linux-headers-$(KVER)
 
 # Sources that make up the Kbuild tree (copied per target, see build-kmod.sh).
-KSRC_DIRS := kernel tsuart-fix rs485proto i2c-max6615 tests/kmod tests/sim
+KSRC_DIRS := kernel tsuart-fix rs485proto i2c-max6615 tests/kmod tests/sim ts7800-can
 
 TEST ?=
 export KVER KDIR TOP BUILD

@@ -2,7 +2,7 @@
 # Shared helpers of the project's scripts (source it).
 TOP=${TOP:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}
 BUILD=${BUILD:-$TOP/build}
-KSRC_DIRS="kernel tsuart-fix rs485proto i2c-max6615 tests/kmod tests/sim"
+KSRC_DIRS="kernel tsuart-fix rs485proto i2c-max6615 tests/kmod tests/sim ts7800-can"
 
 say()  { printf '==> %s\n' "$*" >&2; }
 die()  { printf 'error: %s\n' "$*" >&2; exit 1; }
