@@ -1,0 +1,186 @@
+// SPDX-License-Identifier: GPL-2.0
+// The Module loop on LCM's in-process provider (memq://): announcements,
+// CM_CMD_STATE addressed to the module, PAUSE stopping the periodic work,
+// manual-only STOP, TERMINATE by command and by SIGTERM, ModuleExit codes.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <lcm/lcm-cpp.hpp>
+#include <vector>
+
+#include "advee/module/module.hpp"
+#include "common/cmd_state_t.hpp"
+#include "common/data_state_t.hpp"
+
+using namespace advee::module;
+using namespace std::chrono_literals;
+
+namespace {
+
+struct Announcements {
+  std::vector<common::data_state_t> msgs;
+  void on(const lcm::ReceiveBuffer*, const std::string&, const common::data_state_t* m) {
+    msgs.push_back(*m);
+  }
+  State last() const { return msgs.empty() ? State::Unknown : static_cast<State>(msgs.back().state); }
+};
+
+class ModuleTest : public testing::Test {
+ protected:
+  ModuleOptions opts(std::chrono::milliseconds announce = 1000ms) {
+    ModuleOptions o;
+    o.name = "driver_test";
+    o.lcm_url = "memq://";
+    o.errors.print_severity = kSeverityNone;
+    o.announce_period = announce;
+    return o;
+  }
+  void command(Module& m, const std::string& target, State s, bool manual = false) {
+    common::cmd_state_t c;
+    c.utime = 1;
+    c.module = "test";
+    c.target = target;
+    c.state = static_cast<std::int8_t>(s);
+    c.manual = manual;
+    m.lcm().publish("CM_CMD_STATE", &c);
+    // memq delivers on the next handle; the command acts on the next loop pass.
+    for (int i = 0; i < 4; ++i) m.run_once(0ms);
+  }
+  void spin(Module& m, std::chrono::milliseconds d) {
+    const auto end = std::chrono::steady_clock::now() + d;
+    while (std::chrono::steady_clock::now() < end && m.run_once(5ms)) {
+    }
+  }
+};
+
+TEST_F(ModuleTest, StartsInInitAndAnnouncesTheStartState) {
+  Module m(opts());
+  Announcements a;
+  m.lcm().subscribe("CM_DATA_STATE", &Announcements::on, &a);
+  EXPECT_EQ(m.state(), State::Init);
+  ASSERT_TRUE(m.request_state(State::Run, false, "test"));
+  m.run_once(0ms);
+  ASSERT_EQ(a.msgs.size(), 1u);
+  EXPECT_EQ(a.msgs[0].module, "driver_test");
+  EXPECT_EQ(a.last(), State::Run);
+  EXPECT_EQ(a.msgs[0].pid, ::getpid());
+}
+
+TEST_F(ModuleTest, AnnouncesEveryPeriod) {
+  Module m(opts(20ms));
+  Announcements a;
+  m.lcm().subscribe("CM_DATA_STATE", &Announcements::on, &a);
+  m.request_state(State::Pause, false, "test");
+  spin(m, 200ms);
+  // 1 for the change + about 10 periodic ones; at least half of them.
+  EXPECT_GE(a.msgs.size(), 6u);
+  for (const auto& s : a.msgs) EXPECT_EQ(s.state, common::data_state_t::PAUSE);
+}
+
+TEST_F(ModuleTest, PauseStopsThePeriodicWorkAndRunResumesIt) {
+  Module m(opts());
+  int polls = 0;
+  m.every(5ms, [&] { ++polls; });
+  m.request_state(State::Run, false, "test");
+  spin(m, 60ms);
+  EXPECT_GT(polls, 3);
+  command(m, "driver_test", State::Pause);
+  EXPECT_EQ(m.state(), State::Pause);
+  const int paused_at = polls;
+  spin(m, 60ms);
+  EXPECT_EQ(polls, paused_at);
+  command(m, "driver_test", State::Run);
+  EXPECT_EQ(m.state(), State::Run);
+  spin(m, 60ms);
+  EXPECT_GT(polls, paused_at + 3);
+}
+
+TEST_F(ModuleTest, CommandsForOtherModulesAreIgnoredAndStarAddressesAll) {
+  Module m(opts());
+  m.request_state(State::Run, false, "test");
+  command(m, "driver_other", State::Pause);
+  EXPECT_EQ(m.state(), State::Run);
+  command(m, "*", State::Pause);
+  EXPECT_EQ(m.state(), State::Pause);
+}
+
+TEST_F(ModuleTest, StopOnlyByHand) {
+  Module m(opts());
+  Announcements a;
+  m.lcm().subscribe("CM_DATA_STATE", &Announcements::on, &a);
+  std::vector<std::pair<State, State>> changes;
+  m.on_state_change([&](State f, State t) { changes.emplace_back(f, t); });
+  m.request_state(State::Run, false, "test");
+  command(m, "driver_test", State::Stop, false);
+  EXPECT_EQ(m.state(), State::Run);
+  command(m, "driver_test", State::Stop, true);
+  EXPECT_EQ(m.state(), State::Stop);
+  command(m, "driver_test", State::Run, false);  // a planner cannot restart it
+  EXPECT_EQ(m.state(), State::Stop);
+  command(m, "driver_test", State::Run, true);
+  EXPECT_EQ(m.state(), State::Run);
+  const std::vector<std::pair<State, State>> want{
+      {State::Init, State::Run}, {State::Run, State::Stop}, {State::Stop, State::Run}};
+  EXPECT_EQ(changes, want);
+  EXPECT_EQ(a.last(), State::Run);
+}
+
+TEST_F(ModuleTest, InvalidStateValuesAreIgnored) {
+  Module m(opts());
+  m.request_state(State::Run, false, "test");
+  common::cmd_state_t c;
+  c.module = "test";
+  c.target = "driver_test";
+  c.state = 42;
+  c.manual = true;
+  m.lcm().publish("CM_CMD_STATE", &c);
+  for (int i = 0; i < 4; ++i) m.run_once(0ms);
+  EXPECT_EQ(m.state(), State::Run);
+}
+
+TEST_F(ModuleTest, TerminateCommandEndsTheLoop) {
+  Module m(opts());
+  m.request_state(State::Run, false, "test");
+  command(m, "driver_test", State::Terminate);
+  EXPECT_EQ(m.state(), State::Terminate);
+  EXPECT_FALSE(m.run_once(0ms));
+  EXPECT_EQ(m.run(), 0);
+}
+
+TEST_F(ModuleTest, SigtermMeansTerminate) {
+  Module m(opts());
+  m.request_state(State::Run, false, "test");
+  ASSERT_EQ(::kill(::getpid(), SIGTERM), 0);  // blocked: waits in the signalfd
+  spin(m, 200ms);
+  EXPECT_EQ(m.state(), State::Terminate);
+}
+
+TEST_F(ModuleTest, ModuleExitFromWorkEndsRunWithItsCode) {
+  Module m(opts());
+  m.every(1ms, [] { throw ModuleExit(ExitKind::Device, 3, "sensor gone"); });
+  EXPECT_EQ(m.run(), 0x23);
+  EXPECT_EQ(m.state(), State::Terminate);
+}
+
+TEST_F(ModuleTest, PostRunsOnTheLoopThread) {
+  Module m(opts());
+  bool ran = false;
+  std::thread t([&] { m.post([&] { ran = true; }); });
+  t.join();
+  m.run_once(100ms);
+  EXPECT_TRUE(ran);
+}
+
+TEST(GuardedMain, ExceptionsBecomeExitCodes) {
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(guarded_main("x", [] () -> int { throw ModuleExit(ExitKind::Resource, 4, "no memory"); }), 0x14);
+  EXPECT_EQ(guarded_main("x", [] () -> int { throw ConfigError("bad"); }), 0x41);
+  EXPECT_EQ(guarded_main("x", [] () -> int { throw std::runtime_error("boom"); }), 0x42);
+  EXPECT_EQ(guarded_main("x", [] { return 0; }), 0);
+  const auto err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("x: no memory (resource error 4)"), std::string::npos) << err;
+}
+
+}  // namespace
