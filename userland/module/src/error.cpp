@@ -48,12 +48,14 @@ std::string format_error(std::string_view module, const Error& e) {
   if (e.fatal) s += " (fatal)";
   s += ": ";
   s += e.text;
-  s += " [";
-  s += to_string(e.type);
-  s += " " + std::to_string(e.number);
-  if (!e.file.empty()) s += ", " + std::filesystem::path(e.file).filename().string() + ":" +
-                             std::to_string(e.line);
-  s += "]";
+  // Type and number only when they say something; the location always.
+  std::string tail;
+  if (e.type != ErrorType::Unknown || e.number != 0)
+    tail = std::string(to_string(e.type)) + " " + std::to_string(e.number);
+  if (!e.file.empty())
+    tail += (tail.empty() ? "" : ", ") + std::filesystem::path(e.file).filename().string() + ":" +
+            std::to_string(e.line);
+  if (!tail.empty()) s += " [" + tail + "]";
   return s;
 }
 

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: GPL-2.0
+// advee-watchdog: runs and guards the robot's modules (docs/modules.md).
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "advee/module/module.hpp"
+#include "advee/watchdog/config.hpp"
+#include "advee/watchdog/supervisor.hpp"
+#include "advee/watchdog/systemd_notify.hpp"
+
+using namespace advee;
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "advee-watchdog: starts the robot modules listed in its configuration, restarts a module\n"
+      "whose CM_DATA_STATE announcement is older than dead_after_s (2 s) with exponential\n"
+      "back-off, and obeys CM_CMD_STATE for each module (TERMINATE keeps it down, RUN starts it\n"
+      "again). Under systemd (Type=notify) it reports READY=1, STATUS= and pings WATCHDOG=1\n"
+      "at half of WatchdogSec. The LCM URL comes from the configuration or LCM_DEFAULT_URL.\n"
+      "Exit codes: 0 terminated on request, 0x41 configuration error, 0x11 resource error.",
+      "advee-watchdog"};
+  std::string config_path = "/etc/advee/watchdog.yaml";
+  bool check_only = false;
+  app.add_option("-c,--config", config_path, "supervisor configuration (YAML)")
+      ->capture_default_str();
+  app.add_flag("--check", check_only, "parse the configuration, print the module list and exit");
+  CLI11_PARSE(app, argc, argv);
+
+  return module::guarded_main("advee-watchdog", [&] {
+    auto cfg = watchdog::load_supervisor_config(config_path);
+    if (check_only) {
+      for (const auto& m : cfg.modules) {
+        std::cout << m.name << " " << m.path;
+        for (const auto& a : m.args) std::cout << " " << a;
+        std::cout << (m.start ? "" : "  (kept down until RUN)") << "\n";
+      }
+      return 0;
+    }
+    cfg.self.extra_signals.push_back(SIGCHLD);
+    module::Module self(cfg.self);
+    watchdog::SystemdNotifier notifier;
+    watchdog::Supervisor sup(self, cfg);
+    sup.on_change([&] { notifier.status(sup.summary()); });
+    if (auto iv = notifier.ping_interval()) self.every(*iv, [&] { notifier.ping(); }, false);
+    self.on_state_change([&](module::State, module::State to) {
+      if (to == module::State::Terminate) notifier.stopping();
+    });
+    sup.start();
+    notifier.ready(sup.summary());
+    return self.run();
+  });
+}
