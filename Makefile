@@ -13,6 +13,9 @@
 #   make unit            CTest (plain and ASan/UBSan)
 #   make vm-x86 / vm-arm / vm-debug  one VM lane (vm-debug: KASAN/lockdep kernel)
 #   make bench           the benchmarks: VM programs named bench* (TEST= selects)
+#   make install         install the built stack (DESTDIR= stages it; ARCH=arm
+#                        TARGET=armel|armhf the ARM build; MODULES=dkms|none)
+#   make dkms-source     the module sources into $(DESTDIR)/usr/src/advee-VERSION
 #   make clean
 #
 # KDIR=... builds the modules against another kernel tree (default: Debian's
@@ -33,7 +36,8 @@ TEST ?=
 export KVER KDIR TOP BUILD
 
 .PHONY: all default modules userland testprogs arm arm-modules arm-userland arm-testprogs \
-	check unit unit-asan gates vm-x86 vm-arm vm-debug bench demo deps clean help
+	check unit unit-asan gates vm-x86 vm-arm vm-debug bench demo deps clean help \
+	install dkms-source
 
 ifeq ($(ARCH),arm)
 default: arm
@@ -44,7 +48,7 @@ endif
 all: modules userland testprogs
 
 help:
-	@sed -n '3,20p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,23p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@$(TOP)/scripts/deps.sh
@@ -99,6 +103,14 @@ vm-debug:
 
 bench: modules testprogs userland
 	@VMTEST_BENCH=1 $(TOP)/tests/harness/vm-x86.sh --lane bench $(if $(TEST),--test "$(TEST)")
+
+# Installation (docs/install.md) ------------------------------------------------
+install:
+	@$(TOP)/scripts/install.sh $(if $(DESTDIR),--destdir "$(DESTDIR)") \
+		$(if $(filter arm,$(ARCH)),--arch $(or $(TARGET),armel)) $(if $(MODULES),--modules $(MODULES))
+
+dkms-source:
+	@$(TOP)/scripts/install.sh --dkms-source-only $(if $(DESTDIR),--destdir "$(DESTDIR)")
 
 demo:
 	@$(TOP)/scripts/demo.sh

@@ -10,7 +10,8 @@ set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
 variant=${1:?variant (native|asan|armhf|armel)}
-args=(-G Ninja -S "$TOP/userland")
+# Installed (scripts/install.sh) as a Debian package would be: /usr, /etc.
+args=(-G Ninja -S "$TOP/userland" -DCMAKE_INSTALL_PREFIX=/usr -DCMAKE_INSTALL_SYSCONFDIR=/etc)
 case $variant in
 native) dir=$BUILD/userland; args+=(-DCMAKE_BUILD_TYPE=RelWithDebInfo) ;;
 asan) dir=$BUILD/userland-asan; args+=(-DCMAKE_BUILD_TYPE=Debug -DADVEE_SANITIZE=ON) ;;

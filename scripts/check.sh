@@ -52,6 +52,9 @@ if [ "${#tests[@]}" -eq 0 ]; then
 		stage "userland cross build ($a)" "$TOP/scripts/build-userland.sh" "$a"
 		stage_row "userland cross build ($a)" $?
 	done
+	# dkms add/build/install in a private tree, then the VM loads its modules.
+	stage "DKMS packaging (scripts/dkms-check.sh)" "$TOP/scripts/dkms-check.sh"
+	stage_row "DKMS packaging: dkms add/build/install, modules load in the VM" $?
 	lanes=${VMTEST_LANES:-x86_64 armhf debug}
 else
 	stage "kernel modules (x86_64)" "$TOP/scripts/build-kmod.sh" x86_64
