@@ -38,7 +38,7 @@ struct sja1000_priv {
 
 	void __iomem *reg_base;	/* only read as "probe the chip" flag */
 	unsigned long irq_flags;
-	spinlock_t cmdreg_lock;
+	spinlock_t cmdreg_lock;	/* the core serialises CMR writes with it */
 
 	u16 flags;
 	u8 ocr;
