@@ -20,6 +20,7 @@
 
 #include "advee/rs485sim/config.hpp"
 #include "advee/rs485sim/control.hpp"
+#include "advee/rs485sim/control_client.hpp"
 #include "advee/unique_fd.hpp"
 
 using namespace advee::rs485sim;
@@ -88,36 +89,14 @@ sockaddr_un unix_address(const std::string& path) {
 
 // Client mode: one command, the reply on stdout.
 int send_command(const std::string& path, const std::string& cmd) {
-  UniqueFd fd(socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0));
-  if (!fd) {
-    std::perror("rs485-sim: socket");
+  try {
+    const std::string reply = control_request(path, cmd);
+    std::printf("%s\n", reply.c_str());
+    return reply.rfind("ok", 0) == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rs485-sim: %s\n", e.what());
     return 1;
   }
-  // An autobound (abstract) address, so that the simulator can reply.
-  sa_family_t family = AF_UNIX;
-  if (bind(fd.get(), reinterpret_cast<const sockaddr*>(&family), sizeof(family))) {
-    std::perror("rs485-sim: bind");
-    return 1;
-  }
-  const auto a = unix_address(path);
-  if (sendto(fd.get(), cmd.data(), cmd.size(), 0, reinterpret_cast<const sockaddr*>(&a), sizeof(a)) < 0) {
-    std::fprintf(stderr, "rs485-sim: %s: %s (is the simulator running?)\n", path.c_str(), std::strerror(errno));
-    return 1;
-  }
-  pollfd p{fd.get(), POLLIN, 0};
-  if (poll(&p, 1, 5000) != 1) {
-    std::fprintf(stderr, "rs485-sim: no reply from %s within 5 s\n", path.c_str());
-    return 1;
-  }
-  char buf[8192];
-  const ssize_t n = recv(fd.get(), buf, sizeof(buf), 0);
-  if (n < 0) {
-    std::perror("rs485-sim: recv");
-    return 1;
-  }
-  const std::string reply(buf, static_cast<std::size_t>(n));
-  std::printf("%s\n", reply.c_str());
-  return reply.rfind("ok", 0) == 0 ? 0 : 1;
 }
 
 bool write_words(int fd, const std::vector<std::uint16_t>& w) {
