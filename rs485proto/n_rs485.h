@@ -30,6 +30,12 @@
 #define RS485_ERR_FAIL		8	/* CAN-like counter: +8 per failure */
 #define RS485_ERR_PASSIVE	128
 #define RS485_ERR_OFF		256
+/*
+ * RS485_IOC_GET_STATS as built against the first struct rs485_stats (136
+ * bytes, before collisions was appended): still served, with that prefix.
+ */
+#define RS485_IOC_GET_STATS_V1	_IOC(_IOC_READ, RS485_IOC_MAGIC, 4, \
+				     offsetof(struct rs485_stats, collisions))
 
 enum rs485_rx_state {
 	RS485_RX_IDLE,		/* waiting for an address character */
@@ -110,6 +116,16 @@ struct rs485_bus {
 	wait_queue_head_t done_wait;	/* callers: their request done */
 	bool dead;			/* detaching or hung up: no new work */
 	ktime_t line_free;		/* earliest start of the next request */
+
+	/*
+	 * RS485_CFG_ECHO: the frame being sent, which the first characters
+	 * received must repeat. echo_len 0: no echo expected. Set by the
+	 * worker, consumed by receive_buf (rs485_rx_echo()).
+	 */
+	u8 echo_buf[RS485_WIRE_MAX];
+	unsigned int echo_len;
+	unsigned int echo_pos;		/* characters of the echo seen */
+	bool echo_collided;		/* one of them differed or had an error */
 
 	struct list_head events;	/* struct rs485_event, FIFO */
 	unsigned int nevents;

@@ -144,11 +144,43 @@ static void rs485_rx_char(struct rs485_bus *bus, u8 c, bool parity, bool lenient
 		rs485_rx_data(bus, c);
 }
 
+/*
+ * RS485_CFG_ECHO: while the worker expects the echo of the frame it sends,
+ * the first characters received are that echo, not frames. Each is compared
+ * with the character sent (the 8 data bits: the parity flag depends on when
+ * the driver read it, before or after the switch back to space); a
+ * difference or an error flag marks a collision. Returns how many of the
+ * @count characters were the echo.
+ */
+static int rs485_rx_echo(struct rs485_bus *bus, const u8 *cp, const char *fp, int count)
+{
+	unsigned long flags;
+	bool done = false;
+	int i = 0;
+
+	spin_lock_irqsave(&bus->lock, flags);
+	if (bus->echo_pos < bus->echo_len) {
+		for (; i < count && bus->echo_pos < bus->echo_len; i++) {
+			char flag = fp ? fp[i] : TTY_NORMAL;
+
+			if ((flag != TTY_NORMAL && flag != TTY_PARITY) ||
+			    cp[i] != bus->echo_buf[bus->echo_pos])
+				bus->echo_collided = true;
+			bus->echo_pos++;
+		}
+		done = bus->echo_pos == bus->echo_len;
+	}
+	spin_unlock_irqrestore(&bus->lock, flags);
+	if (done)
+		wake_up_all(&bus->resp_wait);
+	return i;
+}
+
 void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int count)
 {
 	unsigned long flags;
 	bool lenient;
-	int i;
+	int i, echo;
 
 	/*
 	 * The characters of this call were flagged before the call: if the
@@ -159,7 +191,8 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 	lenient = bus->rx.lenient;
 	spin_unlock_irqrestore(&bus->lock, flags);
 
-	for (i = 0; i < count; i++) {
+	echo = rs485_rx_echo(bus, cp, fp, count);
+	for (i = echo; i < count; i++) {
 		char flag = fp ? fp[i] : TTY_NORMAL;
 
 		switch (flag) {

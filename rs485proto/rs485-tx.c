@@ -9,18 +9,24 @@
  * UART that encodes the 9th bit when a character enters its FIFO, the next
  * one) gets the wrong 9th bit. tty_wait_until_sent() guarantees that, but a
  * serial_core UART polls tx_empty() with a sleep of at least one jiffy (4 ms
- * at HZ=250): far longer than the character. So the worker first sleeps the
- * time the characters need on the line and only then asks
- * tty_wait_until_sent(), which then normally finds the transmitter empty at
- * once. Everything here sleeps: it runs only in the bus's work item.
+ * at HZ=250): far longer than the character. So the worker first sleeps, with
+ * hrtimer precision, the time the characters need on the line and only then
+ * asks tty_wait_until_sent(), which then normally finds the transmitter empty
+ * at once (rs485_drain()). Everything here sleeps: it runs only in the bus's
+ * work item.
  */
-#include <linux/delay.h>
+#include <linux/hrtimer.h>
 #include <linux/jiffies.h>
+#include <linux/sched.h>
 
 #include "n_rs485.h"
 
 /* Upper bound for a frame to drain, also if flow control stalls the UART. */
 #define RS485_DRAIN_TIMEOUT	(HZ / 2)
+/* Characters a UART holds once the tty's buffer is empty (16550 FIFO). */
+#define RS485_TX_FIFO_CHARS	16
+/* Echo mode: how long the rest of the echo may lag behind the line. */
+#define RS485_ECHO_WAIT_NS	(50 * NSEC_PER_MSEC)
 
 static void rs485_termios_bus(struct rs485_bus *bus, struct ktermios *t, bool mark)
 {
@@ -112,24 +118,55 @@ static int rs485_write_all(struct rs485_bus *bus, const u8 *buf, size_t len)
 	return 0;
 }
 
-/* Wait until @nchars written at @start have left the transmitter. */
-static int rs485_drain(struct rs485_bus *bus, ktime_t start, size_t nchars)
+/*
+ * Sleep until @end with hrtimer precision. fsleep() would allow up to twice
+ * the time (usleep_range(us, 2 * us)), more than the characters take.
+ */
+static void rs485_sleep_until(struct rs485_bus *bus, ktime_t end)
 {
-	u64 ns = (nchars + 1) * rs485_char_ns(bus);
-	s64 left = ktime_to_ns(ktime_sub(ktime_add_ns(start, ns), ktime_get()));
+	u64 slack = div_u64(rs485_char_ns(bus), 8);
 
-	if (left > 0)
-		fsleep(div_u64(left, NSEC_PER_USEC) + 1);
-	tty_wait_until_sent(bus->tty, RS485_DRAIN_TIMEOUT);
-	if (tty_chars_in_buffer(bus->tty))
+	while (ktime_before(ktime_get(), end)) {
+		set_current_state(TASK_UNINTERRUPTIBLE);
+		schedule_hrtimeout_range(&end, slack, HRTIMER_MODE_ABS);
+	}
+}
+
+/*
+ * Wait until the @nchars just written have left the transmitter.
+ *
+ * tty_wait_until_sent() alone would be slow: serial_core polls tx_empty()
+ * with msleep_interruptible() of at least one jiffy (4 ms at HZ=250), ten
+ * characters' time at 115200 Bd, whenever the last character is still
+ * shifting out when it first looks. So: first wait until the tty's buffer
+ * is empty (every character has reached the UART), then sleep with hrtimer
+ * precision for the time the characters still in the UART need on the line
+ * (at most a 16550-sized FIFO of them, 11 bits each), and only then let
+ * tty_wait_until_sent() confirm; it then normally finds the transmitter
+ * empty at its first look. A deeper FIFO only makes it sleep again.
+ */
+static int rs485_drain(struct rs485_bus *bus, size_t nchars)
+{
+	struct tty_struct *tty = bus->tty;
+	u64 char_ns = rs485_char_ns(bus);
+	long left;
+
+	left = wait_event_interruptible_timeout(tty->write_wait,
+						!tty_chars_in_buffer(tty) || READ_ONCE(bus->dead),
+						RS485_DRAIN_TIMEOUT);
+	if (left < 0)
+		return -EINTR;
+	if (!left)
+		return -ETIMEDOUT;
+	rs485_sleep_until(bus, ktime_add_ns(ktime_get(),
+					    min_t(size_t, nchars, RS485_TX_FIFO_CHARS) * char_ns +
+					    char_ns / 4));
+	tty_wait_until_sent(tty, RS485_DRAIN_TIMEOUT);
+	if (tty_chars_in_buffer(tty))
 		return -ETIMEDOUT;
 	return READ_ONCE(bus->dead) ? -EIO : 0;
 }
 
-/*
- * Send one frame (ADDR ... CRC) and return when its last character has left
- * the UART; 0 or a negative error (detach, hangup, stuck transmitter).
- */
 static void rs485_rx_lenient(struct rs485_bus *bus, bool on)
 {
 	unsigned long flags;
@@ -139,29 +176,81 @@ static void rs485_rx_lenient(struct rs485_bus *bus, bool on)
 	spin_unlock_irqrestore(&bus->lock, flags);
 }
 
+/* RS485_CFG_ECHO: the next characters received must repeat @buf. */
+static void rs485_echo_expect(struct rs485_bus *bus, const u8 *buf, size_t len)
+{
+	unsigned long flags;
+
+	spin_lock_irqsave(&bus->lock, flags);
+	memcpy(bus->echo_buf, buf, len);
+	bus->echo_pos = 0;
+	bus->echo_collided = false;
+	bus->echo_len = len;
+	spin_unlock_irqrestore(&bus->lock, flags);
+}
+
+static bool rs485_echo_complete(struct rs485_bus *bus)
+{
+	unsigned long flags;
+	bool done;
+
+	spin_lock_irqsave(&bus->lock, flags);
+	done = bus->dead || bus->echo_pos >= bus->echo_len;
+	spin_unlock_irqrestore(&bus->lock, flags);
+	return done;
+}
+
+/*
+ * Wait for the rest of the echo and stop expecting it; 0 if the bus carried
+ * the frame as sent, -ECOMM if not (a collision). The echo's last character
+ * ends with the frame's last stop bit, but a UART may hold it back (a 16550
+ * reports a partly filled receive FIFO after 4 idle characters) and the flip
+ * buffer work runs later still: RS485_ECHO_WAIT_NS covers that. It is spent
+ * in full only when characters of the echo are missing.
+ */
+static int rs485_echo_check(struct rs485_bus *bus)
+{
+	unsigned long flags;
+	bool collided;
+
+	wait_event_hrtimeout(bus->resp_wait, rs485_echo_complete(bus),
+			     ns_to_ktime(RS485_ECHO_WAIT_NS));
+	spin_lock_irqsave(&bus->lock, flags);
+	collided = bus->echo_collided || bus->echo_pos < bus->echo_len;
+	bus->echo_len = 0;
+	bus->echo_pos = 0;
+	spin_unlock_irqrestore(&bus->lock, flags);
+	return collided ? -ECOMM : 0;
+}
+
+/*
+ * Send one frame (ADDR ... CRC) and return when its last character has left
+ * the UART (and, in echo mode, its echo has come back): 0, -ECOMM (echo
+ * mode: collision) or another negative error (detach, hangup, stuck
+ * transmitter).
+ */
 int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 {
 	s64 gap = ktime_to_ns(ktime_sub(bus->line_free, ktime_get()));
+	bool echo = bus->cfg.flags & RS485_CFG_ECHO;
 	struct tty_port *port = bus->tty->port;
 	unsigned long flags;
-	ktime_t start;
-	int ret;
+	int ret, echo_ret;
 
 	if (gap > 0)
-		fsleep(div_u64(gap, NSEC_PER_USEC) + 1);
-
+		rs485_sleep_until(bus, bus->line_free);
+	if (echo)
+		rs485_echo_expect(bus, buf, len);
 	rs485_rx_lenient(bus, true);
 	rs485_set_parity(bus, true);
-	start = ktime_get();
 	ret = rs485_write_all(bus, buf, 1);
 	if (!ret)
-		ret = rs485_drain(bus, start, 1);
+		ret = rs485_drain(bus, 1);
 	rs485_set_parity(bus, false);
 	if (!ret) {
-		start = ktime_get();
 		ret = rs485_write_all(bus, buf + 1, len - 1);
 		if (!ret)
-			ret = rs485_drain(bus, start, len - 1);
+			ret = rs485_drain(bus, len - 1);
 	}
 	/*
 	 * Everything flagged in mark parity was pushed by the UART before the
@@ -171,6 +260,11 @@ int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 	if (port)
 		flush_work(&port->buf.work);
 	rs485_rx_lenient(bus, false);
+	if (echo) {
+		echo_ret = rs485_echo_check(bus);
+		if (!ret)
+			ret = echo_ret;
+	}
 
 	spin_lock_irqsave(&bus->lock, flags);
 	bus->stats.tx_frames++;

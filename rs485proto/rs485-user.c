@@ -196,6 +196,8 @@ int rs485_config_check(const struct rs485_config *cfg)
 	for (i = 0; i < ARRAY_SIZE(cfg->reserved); i++)
 		if (cfg->reserved[i])
 			return -EINVAL;
+	if (cfg->flags & ~RS485_CFG_ECHO)
+		return -EINVAL;
 	if (cfg->baud < RS485_BAUD_MIN || cfg->baud > RS485_BAUD_MAX ||
 	    cfg->timeout_us < RS485_TIMEOUT_MIN_US || cfg->timeout_us > RS485_TIMEOUT_MAX_US ||
 	    cfg->retries > RS485_RETRIES_MAX ||
@@ -284,7 +286,8 @@ static int rs485_ioc_get_config(struct rs485_bus *bus, void __user *arg)
 	return copy_to_user(arg, &cfg, sizeof(cfg)) ? -EFAULT : 0;
 }
 
-static int rs485_ioc_get_stats(struct rs485_bus *bus, void __user *arg)
+/* @size: the caller's struct rs485_stats, the current one or the first. */
+static int rs485_ioc_get_stats(struct rs485_bus *bus, void __user *arg, size_t size)
 {
 	struct rs485_stats st;
 	unsigned long flags;
@@ -293,7 +296,7 @@ static int rs485_ioc_get_stats(struct rs485_bus *bus, void __user *arg)
 	spin_lock_irqsave(&bus->lock, flags);
 	st = bus->stats;
 	spin_unlock_irqrestore(&bus->lock, flags);
-	return copy_to_user(arg, &st, sizeof(st)) ? -EFAULT : 0;
+	return copy_to_user(arg, &st, size) ? -EFAULT : 0;
 }
 
 static int rs485_ioc_node(struct rs485_bus *bus, void __user *arg, bool reset)
@@ -346,7 +349,9 @@ int rs485_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg)
 	case RS485_IOC_SET_CONFIG:
 		return rs485_ioc_set_config(bus, uarg);
 	case RS485_IOC_GET_STATS:
-		return rs485_ioc_get_stats(bus, uarg);
+		return rs485_ioc_get_stats(bus, uarg, sizeof(struct rs485_stats));
+	case RS485_IOC_GET_STATS_V1:
+		return rs485_ioc_get_stats(bus, uarg, _IOC_SIZE(RS485_IOC_GET_STATS_V1));
 	case RS485_IOC_GET_NODE:
 		return rs485_ioc_node(bus, uarg, false);
 	case RS485_IOC_RESET_NODE:
@@ -367,6 +372,7 @@ int rs485_compat_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long a
 	case RS485_IOC_GET_CONFIG:
 	case RS485_IOC_SET_CONFIG:
 	case RS485_IOC_GET_STATS:
+	case RS485_IOC_GET_STATS_V1:
 	case RS485_IOC_GET_NODE:
 	case RS485_IOC_RESET_NODE:
 	case FIONREAD:

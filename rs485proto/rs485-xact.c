@@ -204,6 +204,7 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 	bool resend = false;
 	unsigned long flags;
 	u32 attempt;
+	int ret;
 
 	req->status = RS485_ERROR;
 	for (attempt = 0; attempt <= req->retries; attempt++) {
@@ -227,10 +228,24 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 		spin_unlock_irqrestore(&bus->lock, flags);
 
 		req->attempts++;
-		if (rs485_tx_frame(bus, buf, len)) {
+		ret = rs485_tx_frame(bus, buf, len);
+		if (ret) {
 			spin_lock_irqsave(&bus->lock, flags);
 			bus->resp_state = RS485_RESP_NONE;
+			if (ret == -ECOMM)
+				bus->stats.collisions++;
 			spin_unlock_irqrestore(&bus->lock, flags);
+			if (ret == -ECOMM && !READ_ONCE(bus->dead)) {
+				/*
+				 * The node got a garbled frame (or none): no
+				 * response to wait for. Repeat the request once
+				 * the line has been idle for the gap.
+				 */
+				bus->line_free = ktime_add_ns(ktime_get(), bus->cfg.gap_chars *
+							      rs485_char_ns(bus));
+				req->status = RS485_COLLISION;
+				continue;
+			}
 			req->status = RS485_ERROR;
 			return;
 		}

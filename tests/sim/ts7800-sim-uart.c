@@ -136,6 +136,9 @@ static void sim_tx_deliver(struct sim_uart *u, u16 w, ktime_t t)
 		peer = &u->sim->uart[u->peer];
 		sim_rx_complete(peer, w, t);
 	}
+	/* MODEL: a 2-wire transceiver with its receiver on hears the line. */
+	if (u->echo)
+		sim_rx_complete(u, w, t);
 }
 
 static ktime_t sim_start_time(ktime_t line_free)

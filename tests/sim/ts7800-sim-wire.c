@@ -164,6 +164,15 @@ static long wire_ioctl(struct file *file, unsigned int cmd, unsigned long arg)
 		spin_unlock_irqrestore(&sim->lock, flags);
 		ts7800_sim_irq_kick(sim);
 		return 0;
+	case TS7800_SIM_SET_ECHO:
+		if (get_user(level, (u32 __user *)arg))
+			return -EFAULT;
+		if (level > 1)
+			return -EINVAL;
+		spin_lock_irqsave(&sim->lock, flags);
+		u->echo = level;
+		spin_unlock_irqrestore(&sim->lock, flags);
+		return 0;
 	default:
 		return -ENOTTY;
 	}

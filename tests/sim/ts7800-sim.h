@@ -90,6 +90,7 @@ struct sim_uart {
 	wait_queue_head_t wait_out;	/* readers: words in line_out */
 
 	int peer;		/* cross-connected port, or -1 */
+	bool echo;		/* receives what it transmits (TS7800_SIM_SET_ECHO) */
 	struct sim_fault rx_fault;
 	struct sim_fault tx_fault;
 	struct ts7800_sim_wire_stats stats;

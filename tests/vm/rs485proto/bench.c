@@ -209,7 +209,7 @@ int main(void)
 	tap_plan(2);
 	if (sim_load())
 		tap_bail("cannot load ts_uart + ts7800_sim");
-	s.wfd = wire_open(PORT);
+	s.wfd = wire_open(PORT, O_NONBLOCK);
 	if (s.wfd < 0 || pthread_create(&s.thread, NULL, fast_slave_main, &s))
 		tap_bail("slave");
 

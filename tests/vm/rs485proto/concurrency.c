@@ -1,30 +1,47 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * concurrency - 8 processes share one bus for DURATION seconds while the
+ * concurrency - 8 processes share one bus for 60 s (RS485_CONCURRENCY_S
+ * overrides it, e.g. for a quick run) while the
  * slave also sends unsolicited event frames (a full-duplex link): every
  * transaction gets its own response byte-exact, every event reaches read()
  * in order and byte-exact (only frames hit by a reported UART overrun may
  * be missing) and none reaches a transaction, the statistics
  * add up (xfers = ok + failed), and the processes got turns fairly.
- * (The issue asks for 60 s; 20 s keeps the suite's run time modest.)
  */
 #include "rs485-lib.h"
 
 #define PORT		0
 #define NPROC		8
-#define DURATION	20
+#define DEFAULT_DURATION_S	60
 #define EVENT_PERIOD_US	20000
 
 struct result {
 	unsigned int ok, wrong, failed;
 };
 
+static unsigned int duration_s = DEFAULT_DURATION_S;
+
+/* RS485_CONCURRENCY_S: seconds of hammering (1..3600), default 60. */
+static void duration_from_env(void)
+{
+	const char *s = getenv("RS485_CONCURRENCY_S");
+	char *end;
+	unsigned long v;
+
+	if (!s || !*s)
+		return;
+	v = strtoul(s, &end, 10);
+	if (*end || v < 1 || v > 3600)
+		tap_bail("RS485_CONCURRENCY_S=%s: want seconds, 1..3600", s);
+	duration_s = v;
+}
+
 static void child(int fd, int id, int out)
 {
 	struct result res = { 0 };
 	struct rs485_xfer x;
 	uint8_t data[64];
-	double end = now_s() + DURATION;
+	double end = now_s() + duration_s;
 	uint32_t seq = 0, len;
 
 	srand(id * 7919 + 1);
@@ -51,62 +68,16 @@ static void child(int fd, int id, int out)
 	_exit(0);
 }
 
-struct reader {
-	int fd;
-	atomic_int stop;
-	unsigned int got, bad, lost, non_event;
-	uint32_t next;
-};
-
-static void *reader_main(void *arg)
-{
-	struct reader *r = arg;
-	struct pollfd p = { .fd = r->fd, .events = POLLIN };
-	uint8_t buf[RS485_MAX_FRAME], want[8];
-	ssize_t n;
-
-	while (!r->stop) {
-		if (poll(&p, 1, 100) <= 0)
-			continue;
-		n = read(r->fd, buf, sizeof(buf));
-		if (n <= 0)
-			continue;
-		if (!(buf[2] & RS485_RESP_EVENT)) {
-			r->non_event++;
-			continue;
-		}
-		if (n == 8) {
-			uint32_t seq;
-
-			memcpy(&seq, buf + 4, 4);
-			if (seq > r->next) {
-				tap_diag("events %u..%u missing", r->next, seq - 1);
-				r->lost += seq - r->next;
-				r->next = seq;
-			}
-			event_frame(r->next, want);
-			if (!memcmp(buf, want, 8)) {
-				r->got++;
-				r->next++;
-				continue;
-			}
-		}
-		tap_diag("event frame of %zd bytes is not event %u", n, r->next);
-		r->bad++;
-	}
-	return NULL;
-}
-
 int main(void)
 {
 	struct result res[NPROC], sum = { 0 };
 	struct rs485_stats st;
-	struct reader rd;
+	struct event_reader rd;
 	struct slave s;
-	pthread_t rt;
 	int fd, pipes[NPROC][2], i, status, exits_ok = 1;
 	unsigned int min_ok = ~0u, max_ok = 0;
 
+	duration_from_env();
 	tap_plan(6);
 	if (sim_load())
 		tap_bail("cannot load ts_uart + ts7800_sim");
@@ -115,9 +86,8 @@ int main(void)
 		tap_bail("attach n_rs485");
 	if (slave_start_events(&s, PORT, EVENT_PERIOD_US))
 		tap_bail("slave");
-	memset(&rd, 0, sizeof(rd));
-	rd.fd = fd;
-	pthread_create(&rt, NULL, reader_main, &rd);
+	if (event_reader_start(&rd, fd, UINT32_MAX, 1))
+		tap_bail("reader thread");
 
 	for (i = 0; i < NPROC; i++) {
 		if (pipe(pipes[i]))
@@ -135,8 +105,7 @@ int main(void)
 			exits_ok = 0;
 	s.stop = 1;
 	usleep(1000000);	/* the last event arrives (also on a slow debug kernel) */
-	rd.stop = 1;
-	pthread_join(rt, NULL);
+	event_reader_stop(&rd);
 	slave_stop(&s);
 
 	for (i = 0; i < NPROC; i++) {
@@ -157,8 +126,8 @@ int main(void)
 		 (unsigned long long)st.rx_overruns, (unsigned long long)st.rx_framing,
 		 (unsigned long long)st.events, (unsigned long long)st.events_dropped);
 	tap_ok(exits_ok && sum.ok > 0 && sum.wrong == 0 && sum.failed == 0,
-	       "%d processes, %u transactions in %d s: every one answered correctly (%u wrong, %u failed)",
-	       NPROC, sum.ok, DURATION, sum.wrong, sum.failed);
+	       "%d processes, %u transactions in %u s: every one answered correctly (%u wrong, %u failed)",
+	       NPROC, sum.ok, duration_s, sum.wrong, sum.failed);
 	tap_ok(st.xfers == st.xfers_ok + st.xfers_failed && st.xfers_ok == sum.ok,
 	       "counters add up: xfers %llu = ok %llu + failed %llu",
 	       (unsigned long long)st.xfers, (unsigned long long)st.xfers_ok,
@@ -166,7 +135,7 @@ int main(void)
 	tap_ok(min_ok * 2 >= max_ok, "fair turns: fewest %u, most %u transactions per process",
 	       min_ok, max_ok);
 	tap_ok(rd.non_event == 0, "no response went to read() (%u)", rd.non_event);
-	tap_ok(rd.bad == 0, "events arrive in order and byte-exact (%u wrong)", rd.bad);
+	tap_ok(rd.other == 0, "events arrive in order and byte-exact (%u wrong)", rd.other);
 	/*
 	 * An overrun (the emulated CPU did not serve the 16-deep FIFO in time)
 	 * loses characters: the frame they belonged to, and the next one if its

@@ -5,7 +5,8 @@
  * a page end) and random contents, also the real commands with random
  * contents: only clean errors (EINVAL, EFAULT, ENOTTY) or success, and the
  * bus works afterwards. Also checks at compile time that the UAPI layout is
- * the one documented (same on 32-bit user space).
+ * the one documented (same on 32-bit user space), and that a program built
+ * with the first, 136-byte struct rs485_stats still gets its statistics.
  */
 #include <sys/mman.h>
 #include <stddef.h>
@@ -20,7 +21,9 @@ _Static_assert(sizeof(struct rs485_xfer) == 536, "rs485_xfer layout");
 _Static_assert(offsetof(struct rs485_xfer, timeout_us) == 520, "rs485_xfer layout");
 _Static_assert(offsetof(struct rs485_xfer, attempts) == 532, "rs485_xfer layout");
 _Static_assert(sizeof(struct rs485_config) == 32, "rs485_config layout");
-_Static_assert(sizeof(struct rs485_stats) == 17 * 8, "rs485_stats layout");
+_Static_assert(offsetof(struct rs485_config, flags) == 16, "rs485_config layout");
+_Static_assert(sizeof(struct rs485_stats) == 18 * 8, "rs485_stats layout");
+_Static_assert(offsetof(struct rs485_stats, collisions) == 17 * 8, "rs485_stats layout");
 _Static_assert(sizeof(struct rs485_node) == 8, "rs485_node layout");
 
 static const unsigned int real_cmds[] = {
@@ -47,7 +50,7 @@ int main(void)
 	uint8_t *page;
 	int fd, ret;
 
-	tap_plan(3);
+	tap_plan(4);
 	if (sim_load())
 		tap_bail("cannot load ts_uart + ts7800_sim");
 	fd = bus_open(PORT);
@@ -115,6 +118,20 @@ int main(void)
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, "abc", 3, 300000, 2);
 	tap_ok(ret == 0 && x.status == RS485_OK && !memcmp(x.resp.data, "abc", 3),
 	       "the bus works after the fuzzing");
+	{
+		/* RS485_IOC_GET_STATS as compiled before collisions was added */
+		unsigned int old_cmd = _IOC(_IOC_READ, RS485_IOC_MAGIC, 4, 136);
+		uint64_t old[18];
+		struct rs485_stats st;
+
+		memset(old, 0xa5, sizeof(old));
+		get_stats(fd, &st);
+		ret = ioctl(fd, old_cmd, old);
+		tap_ok(ret == 0 && old[9] == st.xfers && old[0] >= st.tx_frames &&
+		       old[17] == 0xa5a5a5a5a5a5a5a5ull,
+		       "the 136-byte RS485_IOC_GET_STATS of older programs still works (xfers %llu), nothing written past it",
+		       (unsigned long long)old[9]);
+	}
 	slave_stop(&s);
 	munmap(page, 8192);
 	close(fd);

@@ -24,6 +24,7 @@
 
 #include "tap.h"
 #include "vmtest.h"
+#include "ts7800-wire.h"
 
 #define SLAVE_ADDR	0x10
 #define OTHER_ADDR	0x11
@@ -75,14 +76,6 @@ static inline int bus_open(int port)
 	return fd;
 }
 
-static inline int wire_open(int port)
-{
-	char path[48];
-
-	snprintf(path, sizeof(path), "/dev/ts7800-sim/uart%d", port);
-	return open(path, O_RDWR | O_NONBLOCK);
-}
-
 /* CRC-8/MAXIM, bit by bit: independent of the kernel's table. */
 static inline uint8_t crc8_maxim(const uint8_t *p, size_t n)
 {
@@ -109,34 +102,11 @@ static inline size_t frame_words(const uint8_t *f, size_t n, uint8_t crc_xor, ui
 	return n + 1;
 }
 
-static inline int wire_send(int wfd, const uint16_t *w, size_t n)
-{
-	size_t done = 0;
-	ssize_t r;
-
-	while (done < n) {
-		r = write(wfd, w + done, (n - done) * 2);
-		if (r < 0) {
-			if (errno == EINTR)
-				continue;
-			if (errno == EAGAIN) {
-				struct pollfd p = { .fd = wfd, .events = POLLOUT };
-
-				poll(&p, 1, 100);
-				continue;
-			}
-			return -1;
-		}
-		done += r / 2;
-	}
-	return 0;
-}
-
 static inline int wire_send_frame(int wfd, const uint8_t *f, size_t n, uint8_t crc_xor)
 {
 	uint16_t w[RS485_MAX_FRAME + 1] = { 0 };
 
-	return wire_send(wfd, w, frame_words(f, n, crc_xor, w));
+	return wire_write_all(wfd, w, frame_words(f, n, crc_xor, w));
 }
 
 /* The slave thread: parses what the master sends and answers. */
@@ -328,7 +298,7 @@ static inline int slave_start_events(struct slave *s, int port, unsigned int eve
 	pthread_mutex_init(&s->last_lock, NULL);
 	pthread_mutex_init(&s->send_lock, NULL);
 	s->event_period_us = event_period_us;
-	s->wfd = wire_open(port);
+	s->wfd = wire_open(port, O_NONBLOCK);
 	if (s->wfd < 0)
 		return -1;
 	if (pthread_create(&s->thread, NULL, slave_main, s))
@@ -350,6 +320,80 @@ static inline void slave_stop(struct slave *s)
 	if (s->event_period_us)
 		pthread_join(s->event_thread, NULL);
 	close(s->wfd);
+}
+
+/*
+ * A thread that read()s event frames from the bus and checks that the
+ * slave's events (event_frame(seq)) arrive in order and byte-exact.
+ */
+struct event_reader {
+	int fd;
+	uint32_t max_seq;	/* larger sequence numbers are not the slave's */
+	int verbose;		/* tap_diag every gap and stranger */
+	atomic_int stop;
+	pthread_t thread;
+	/* written by the thread, read after event_reader_stop() */
+	uint32_t next;		/* next expected sequence number */
+	unsigned int got;	/* events in order, byte-exact */
+	unsigned int missed;	/* sequence numbers skipped */
+	unsigned int non_event;	/* frames without the EVENT flag (responses) */
+	unsigned int other;	/* other frames: wrong size or contents */
+};
+
+static inline void *event_reader_main(void *arg)
+{
+	struct event_reader *r = arg;
+	struct pollfd p = { .fd = r->fd, .events = POLLIN };
+	uint8_t buf[RS485_MAX_FRAME], want[8];
+	uint32_t seq;
+	ssize_t n;
+
+	while (!r->stop) {
+		if (poll(&p, 1, 100) <= 0)
+			continue;
+		n = read(r->fd, buf, sizeof(buf));
+		if (n <= 0)
+			continue;
+		if (!(buf[2] & RS485_RESP_EVENT)) {
+			r->non_event++;
+			continue;
+		}
+		if (n == 8 && buf[0] == SLAVE_ADDR && buf[1] == 0x41) {
+			memcpy(&seq, buf + 4, 4);
+			if (seq > r->next && seq < r->max_seq) {
+				if (r->verbose)
+					tap_diag("events %u..%u missing", r->next, seq - 1);
+				r->missed += seq - r->next;
+				r->next = seq;
+			}
+		}
+		event_frame(r->next, want);
+		if (n == 8 && !memcmp(buf, want, 8)) {
+			r->got++;
+			r->next++;
+			continue;
+		}
+		if (r->verbose)
+			tap_diag("event frame of %zd bytes is not event %u", n, r->next);
+		r->other++;
+	}
+	return NULL;
+}
+
+static inline int event_reader_start(struct event_reader *r, int fd, uint32_t max_seq,
+				     int verbose)
+{
+	memset(r, 0, sizeof(*r));
+	r->fd = fd;
+	r->max_seq = max_seq;
+	r->verbose = verbose;
+	return pthread_create(&r->thread, NULL, event_reader_main, r);
+}
+
+static inline void event_reader_stop(struct event_reader *r)
+{
+	r->stop = 1;
+	pthread_join(r->thread, NULL);
 }
 
 /* One transaction; returns the ioctl result, the outcome in x. */

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
  * tsuart-lib.h - helpers of the tsuart VM tests: load the simulated FPGA and
- * the TS-UART driver, configure a port with termios, talk to its wire
- * (/dev/ts7800-sim/uartN, see <linux/ts7800_sim.h>) and decode what N_TTY
- * delivers with PARMRK. Included by exactly one .c per program.
+ * the TS-UART driver, configure a port with termios, read its wire
+ * (/dev/ts7800-sim/uartN; opening and writing it: ts7800-wire.h) and decode
+ * what N_TTY delivers with PARMRK. Included by exactly one .c per program.
  */
 #ifndef TSUART_LIB_H
 #define TSUART_LIB_H
@@ -22,9 +22,9 @@
 
 #include "tap.h"
 #include "vmtest.h"
+#include "ts7800-wire.h"
 
 #define NPORTS 10
-#define DEBUGFS "/sys/kernel/debug/ts7800-sim"
 
 struct rate {
 	unsigned int baud;
@@ -65,23 +65,6 @@ static inline int sim_unload(void)
 	return sh("modprobe -r ts7800_sim") || sh("modprobe -r ts_uart ts7800_fpga");
 }
 
-static inline int debugfs_write(int port, const char *file, long val)
-{
-	char path[128];
-	FILE *f;
-	int ret;
-
-	if (port >= 0)
-		snprintf(path, sizeof(path), DEBUGFS "/uart%d/%s", port, file);
-	else
-		snprintf(path, sizeof(path), DEBUGFS "/%s", file);
-	f = fopen(path, "w");
-	if (!f)
-		return -1;
-	ret = fprintf(f, "%ld\n", val) < 0;
-	return fclose(f) || ret ? -1 : 0;
-}
-
 /* Raw port: no echo, no translation; PARMRK makes flagged characters visible. */
 static inline int tty_open(int port, speed_t speed, tcflag_t cflag_extra, int flags)
 {
@@ -106,37 +89,6 @@ static inline int tty_open(int port, speed_t speed, tcflag_t cflag_extra, int fl
 		return -1;
 	}
 	return fd;
-}
-
-static inline int wire_open(int port, int flags)
-{
-	char path[48];
-
-	snprintf(path, sizeof(path), "/dev/ts7800-sim/uart%d", port);
-	return open(path, O_RDWR | flags);
-}
-
-static inline int wire_stats(int wfd, struct ts7800_sim_wire_stats *st)
-{
-	return ioctl(wfd, TS7800_SIM_GET_STATS, st);
-}
-
-/* Write all words, waiting for room as needed; returns 0 or -1. */
-static inline int wire_write_all(int wfd, const uint16_t *w, size_t n)
-{
-	size_t done = 0;
-	ssize_t r;
-
-	while (done < n) {
-		r = write(wfd, w + done, (n - done) * 2);
-		if (r < 0) {
-			if (errno == EINTR)
-				continue;
-			return -1;
-		}
-		done += r / 2;
-	}
-	return 0;
 }
 
 /*

@@ -62,6 +62,11 @@ enum rs485_status {
 	RS485_UNKINSTR = 3,	/* the device does not know the instruction */
 	RS485_DEVERR = 4,	/* the device failed executing it */
 	RS485_ERROR = 5,	/* local failure (UART stuck), interrupted, bad response */
+	/*
+	 * RS485_CFG_ECHO only: the bus did not carry the request as sent (its
+	 * echo differed or did not come back) on the last attempt.
+	 */
+	RS485_COLLISION = 6,
 };
 
 /* Use the bus default (rs485_config) for timeout_us or retries. */
@@ -83,8 +88,20 @@ struct rs485_config {
 	__u32 timeout_us;		/* default response timeout, 100..10000000 */
 	__u32 retries;			/* default retries, 0..16 */
 	__u32 gap_chars;		/* idle characters between frames, 2..255 */
-	__u32 reserved[4];		/* 0 */
+	__u32 flags;			/* RS485_CFG_*, 0 by default (was reserved) */
+	__u32 reserved[3];		/* 0 */
 };
+
+/*
+ * rs485_config.flags: the transceiver echoes every character the master
+ * sends (a 2-wire half-duplex bus whose receiver stays enabled while it
+ * transmits). The discipline then takes the first characters received after
+ * each request as its echo and compares them with what it sent; a
+ * difference (or a missing echo) is a collision: counted in
+ * rs485_stats.collisions and retried, RS485_COLLISION if the last attempt
+ * collided. Without it, such an echo would be taken for the response.
+ */
+#define RS485_CFG_ECHO		0x00000001U
 
 /* Statistics since attach (RS485_IOC_GET_STATS) */
 struct rs485_stats {
@@ -105,6 +122,11 @@ struct rs485_stats {
 	__u64 events;			/* frames queued for read() */
 	__u64 events_dropped;		/* frames dropped: event queue full */
 	__u64 unexpected;		/* non-event frames no transaction waited for */
+	/*
+	 * Added later; a program built with the older 136-byte structure
+	 * (without it) still gets the fields above from RS485_IOC_GET_STATS.
+	 */
+	__u64 collisions;		/* RS485_CFG_ECHO: attempts whose echo differed */
 };
 
 /* Per-node error counter (RS485_IOC_GET_NODE / RS485_IOC_RESET_NODE) */

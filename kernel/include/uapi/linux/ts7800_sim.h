@@ -21,6 +21,7 @@
  * the queue is free. A non-blocking read always returns what is there.
  * There is no flow control on the wire: words transmitted while the read
  * queue is full are dropped and counted (to_wire_dropped).
+ * TS7800_SIM_SET_ECHO makes the UART hear its own characters (2-wire bus).
  */
 #ifndef _UAPI_LINUX_TS7800_SIM_H
 #define _UAPI_LINUX_TS7800_SIM_H
@@ -78,5 +79,12 @@ struct ts7800_sim_wire_stats {
 #define TS7800_SIM_RESET_STATS	_IO(TS7800_SIM_IOC_MAGIC, 2)
 /* Drive the UART's CTS input: 0 = deasserted, 1 = asserted (the default). */
 #define TS7800_SIM_SET_CTS	_IOW(TS7800_SIM_IOC_MAGIC, 3, __u32)
+/*
+ * Echo: 1 = the UART also receives every character it transmits, when its
+ * stop bit ends (after tx fault injection, like everyone on the line), as
+ * on a 2-wire half-duplex bus whose transceiver keeps its receiver enabled;
+ * the wire still reads them. 0 = off (the default, also after reloading).
+ */
+#define TS7800_SIM_SET_ECHO	_IOW(TS7800_SIM_IOC_MAGIC, 4, __u32)
 
 #endif /* _UAPI_LINUX_TS7800_SIM_H */
