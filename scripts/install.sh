@@ -2,9 +2,10 @@
 # SPDX-License-Identifier: GPL-2.0
 #
 # install.sh [--destdir DIR] [--arch native|armhf|armel] [--modules kmod|dkms|none]
-#            [--dkms-source-only]
+#            [--userland-build DIR|none] [--dkms-source-only]
 # Install the Advee stack from the build tree (make; make ARCH=arm for ARM):
-#   userland      cmake --install of build/userland[-ARCH] (prefix /usr, /etc)
+#   userland      cmake --install of build/userland[-ARCH] (prefix /usr, /etc;
+#                 --userland-build another build dir, or none)
 #   system files  udev rules, systemd units, systemd-networkd CAN file,
 #                 sysusers.d, modules-load.d, /etc/sensors.d/advee-max6615.conf
 #   docs          /usr/share/doc/advee/
@@ -23,13 +24,15 @@ destdir=${DESTDIR:-}
 arch=native
 modules=kmod
 dkms_source_only=0
+ubuild=
 while [ $# -gt 0 ]; do
 	case $1 in
 	--destdir) destdir=$2; shift 2 ;;
 	--arch) arch=$2; shift 2 ;;
 	--modules) modules=$2; shift 2 ;;
+	--userland-build) ubuild=$2; shift 2 ;;
 	--dkms-source-only) dkms_source_only=1; shift ;;
-	-h|--help) sed -n '3,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '3,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "install.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
@@ -97,13 +100,15 @@ fi
 
 # --- user space ----------------------------------------------------------------
 case $arch in
-native) ubuild=$BUILD/userland; kbuild=$BUILD/kmod/x86_64 ;;
-armhf|armel) ubuild=$BUILD/userland-$arch; kbuild=$BUILD/kmod/$arch ;;
+native) ubuild=${ubuild:-$BUILD/userland}; kbuild=$BUILD/kmod/x86_64 ;;
+armhf|armel) ubuild=${ubuild:-$BUILD/userland-$arch}; kbuild=$BUILD/kmod/$arch ;;
 *) die "unknown arch $arch" ;;
 esac
-[ -f "$ubuild/cmake_install.cmake" ] || die "no userland build in $ubuild (run: make${arch:+ }$([ "$arch" = native ] || echo ARCH=arm))"
-say "userland ($arch) from $ubuild"
-DESTDIR=$D cmake --install "$ubuild" >/dev/null
+if [ "$ubuild" != none ]; then
+	[ -f "$ubuild/cmake_install.cmake" ] || die "no userland build in $ubuild (run: make$([ "$arch" = native ] || echo ' ARCH=arm'))"
+	say "userland ($arch) from $ubuild"
+	DESTDIR=$D cmake --install "$ubuild" >/dev/null
+fi
 
 # --- system integration ----------------------------------------------------------
 say "udev rules, systemd units, configuration, docs"

@@ -23,6 +23,7 @@ overlay_rw() {
 
 cleanup_mounts() {
 	local m
+	rm -f /run/udev/rules.d/6?-advee-*.rules
 	for m in "${MOUNTS[@]}"; do umount "$m" 2>/dev/null || umount -l "$m"; done
 	MOUNTS=()
 	rm -rf "$OVL"
@@ -36,13 +37,21 @@ stage_install() {
 	"$VMTEST_REPO/scripts/install.sh" --destdir "$DEST" "$@"
 }
 
-# make_live: the group of the installed sysusers.d file and the installed udev
-# rules, in force for udevadm (on the /etc overlay and in /run/udev/rules.d).
+# stage_system: only the system files (udev, systemd, sysusers, configs), so
+# that the rules and units are tested whatever state the userland build is in.
+stage_system() {
+	"$VMTEST_REPO/scripts/install.sh" --destdir "$DEST" --modules none --userland-build none
+}
+
+# make_live: the group of the installed sysusers.d file (on the /etc overlay)
+# and the installed udev rules, in force for udevadm: all in /run/udev/rules.d
+# (udev orders rules by file name across its directories, so the mapping file
+# from /etc/udev/rules.d acts there as it does in /etc).
 make_live() {
 	overlay_rw /etc || return 1
 	systemd-sysusers "$DEST/usr/lib/sysusers.d/advee.conf" || return 1
-	mkdir -p /etc/udev/rules.d /run/udev/rules.d
-	cp "$DEST"/etc/udev/rules.d/*.rules /etc/udev/rules.d/ || return 1
+	mkdir -p /run/udev/rules.d
+	cp "$DEST"/etc/udev/rules.d/*.rules /run/udev/rules.d/ || return 1
 	cp "$DEST"/usr/lib/udev/rules.d/*.rules /run/udev/rules.d/ || return 1
 }
 

@@ -8,7 +8,7 @@
 trap cleanup_mounts EXIT
 UNITS=$DEST/usr/lib/systemd/system
 
-stage_install --modules none >/dev/null 2>&1 || { tap_diag "staging install failed"; exit 1; }
+stage_system >/dev/null 2>&1 || { tap_diag "staging install failed"; exit 1; }
 units=$(cd "$UNITS" && ls)
 tap_plan $(($(echo "$units" | wc -l) + 2))
 for u in $units; do
