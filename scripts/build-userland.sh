@@ -27,3 +27,38 @@ if ! { cmake -B "$dir" "${args[@]}" && ninja -C "$dir"; } >"$log" 2>&1; then
 	tail -40 "$log" >&2
 	die "userland build ($variant) failed; full log: $log"
 fi
+
+# Cross builds: every ELF file must be for the target's ABI (file(1) and the
+# ARM build attributes): armel = ARMv5TE soft float, ld-linux.so.3 (the
+# TS-7800); armhf = ARMv7 hard float (VFP argument registers), ld-linux-armhf.so.3.
+check_abi() {	# check_abi FILE: empty output when it fits $variant
+	local f=$1 desc attrs
+	desc=$(file -b "$f")
+	attrs=$(readelf -A "$f" 2>/dev/null)
+	case $desc in *"ELF 32-bit LSB"*"ARM, EABI5"*) ;; *) echo "$f: $desc"; return ;; esac
+	case $variant in
+	armhf)
+		case $desc in *executable*) [[ $desc == *ld-linux-armhf.so.3* ]] || echo "$f: not the armhf loader: $desc" ;; esac
+		grep -q 'Tag_ABI_VFP_args: VFP registers' <<<"$attrs" || echo "$f: not hard float"
+		;;
+	armel)
+		case $desc in *executable*) [[ $desc == *ld-linux.so.3* ]] || echo "$f: not the armel loader: $desc" ;; esac
+		grep -q 'Tag_ABI_VFP_args' <<<"$attrs" && echo "$f: hard-float calling convention in an armel build"
+		grep -q 'Tag_CPU_arch: v5TE' <<<"$attrs" || echo "$f: not ARMv5TE: $(grep Tag_CPU_arch: <<<"$attrs")"
+		;;
+	esac
+}
+case $variant in
+armhf|armel)
+	n=0 bad=
+	while IFS= read -r -d '' f; do
+		head -c 4 "$f" | grep -q 'ELF' || continue
+		n=$((n + 1))
+		out=$(check_abi "$f")
+		[ -z "$out" ] || bad+=$'\n'$out
+	done < <(find "$dir" -type f \( -perm -u+x -o -name '*.so*' \) -not -path '*/CMakeFiles/*' -print0)
+	[ -z "$bad" ] || die "userland ($variant): wrong ABI: $bad"
+	[ "$n" -gt 0 ] || die "userland ($variant): no ELF file to check in $dir"
+	say "userland ($variant): $n ELF files, all $(case $variant in armhf) echo ARMv7 hard float ;; armel) echo ARMv5TE soft float ;; esac)"
+	;;
+esac
