@@ -6,6 +6,9 @@
 #   asan    build/userland-asan    Debug, AddressSanitizer + UBSan, unit tests
 #   armhf   build/userland-armhf   cross (arm-linux-gnueabihf), no tests
 #   armel   build/userland-armel   cross (arm-linux-gnueabi, the TS-7800), no tests
+# The cross builds link Debian's armhf/armel libraries from the sysroot of
+# scripts/fetch-arm-sysroot.sh (.cache/arm/ARCH/sysroot) and end with an ABI
+# check of every ELF file they produced.
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
@@ -18,7 +21,8 @@ asan) dir=$BUILD/userland-asan; args+=(-DCMAKE_BUILD_TYPE=Debug -DADVEE_SANITIZE
 armhf|armel)
 	dir=$BUILD/userland-$variant
 	args+=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DADVEE_BUILD_TESTS=OFF
-		-DCMAKE_TOOLCHAIN_FILE="$TOP/userland/cmake/$(cross_prefix "$variant" | sed 's/-$//').cmake") ;;
+		-DCMAKE_TOOLCHAIN_FILE="$TOP/userland/cmake/$(cross_prefix "$variant" | sed 's/-$//').cmake"
+		-DADVEE_ARM_SYSROOT="$("$TOP/scripts/fetch-arm-sysroot.sh" "$variant")") ;;
 *) die "unknown userland variant $variant" ;;
 esac
 say "userland ($variant) in $dir"

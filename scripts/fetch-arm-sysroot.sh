@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# fetch-arm-sysroot.sh DEBARCH: Debian's armel/armhf builds of the libraries
+# the userland links (LCM, libgpiod, yaml-cpp, libsystemd, spdlog/fmt and
+# what their .so files need), downloaded with apt-get download through the
+# private apt setup of fetch-arm-kernel.sh (its lists dir; no foreign
+# architecture is ever added to dpkg) and extracted into
+# .cache/arm/DEBARCH/sysroot. Prints that directory.
+set -euo pipefail
+. "$(dirname "$0")/lib.sh"
+
+debarch=${1:?debian architecture (armhf|armel)}
+cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$debarch
+# The lists and sources of the private apt setup come from fetch-arm-kernel.sh.
+[ -d "$cache/lists" ] && [ -n "$(ls "$cache/lists" 2>/dev/null | grep -v partial)" ] ||
+	"$TOP/scripts/fetch-arm-kernel.sh" "$debarch" "$(arm_flavour "$debarch")" >/dev/null
+apt_opts=(-q -oAPT::Architecture="$debarch" -oAPT::Architectures="$debarch"
+	-oDir::State::Lists="$cache/lists" -oDir::State::status="$cache/status"
+	-oDir::Etc::SourceParts="$cache/sources" -oDir::Etc::SourceList="$cache/sources/sources.list"
+	-oDir::Cache="$cache/apt-cache" -oDebug::NoLocking=1 -oAPT::Sandbox::User=root)
+
+# The -dev packages and the runtime libraries behind every .so they link
+# (the cross toolchain brings libc, libstdc++, libgcc).
+pkgs="liblcm-dev liblcm1 libglib2.0-dev libglib2.0-0 libpcre2-8-0 libffi8 libmount1 libblkid1 libselinux1
+libgpiod-dev libgpiod2 libyaml-cpp-dev libyaml-cpp0.7
+libsystemd-dev libsystemd0 libcap2 libgcrypt20 libgpg-error0 liblz4-1 liblzma5 libzstd1
+libspdlog-dev libspdlog1.10 libfmt-dev libfmt9"
+sysroot=$cache/sysroot
+stamp=$sysroot/.advee-packages
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$(echo $pkgs)" ]; then
+	echo "$sysroot"
+	exit 0
+fi
+mkdir -p "$cache/sysroot-debs"
+rm -f "$cache"/sysroot-debs/*.deb
+say "ARM sysroot ($debarch): apt-get download $(echo $pkgs | wc -w) packages"
+(cd "$cache/sysroot-debs" && apt-get "${apt_opts[@]}" download $pkgs >/dev/null)
+rm -rf "$sysroot"
+mkdir -p "$sysroot"
+for deb in "$cache"/sysroot-debs/*.deb; do dpkg-deb -x "$deb" "$sysroot"; done
+# Absolute symlinks (libfoo.so -> /lib/...) must point into the sysroot.
+find "$sysroot" -type l -lname '/*' | while read -r l; do
+	ln -sfn "$sysroot$(readlink "$l")" "$l"
+done
+echo $pkgs >"$stamp"
+echo "$sysroot"
