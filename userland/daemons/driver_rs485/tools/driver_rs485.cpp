@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-2.0
+// driver_rs485 --config FILE: polls the boards of one RS-485 bus and
+// publishes their readings on LCM (docs/daemons.md). One instance per bus:
+// /etc/advee/driver_rs485a.yaml (SD1 x2 + SO1, 4 Hz), driver_rs485b.yaml (SBS1, 1 Hz).
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "advee/driver_rs485/rs485_driver.hpp"
+#include "advee/rs485/bus.hpp"
+
+using namespace advee;
+
+int main(int argc, char** argv) {
+  return module::guarded_main("driver_rs485", [&] {
+    std::string config;
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if ((a == "-c" || a == "--config") && i + 1 < argc) {
+        config = argv[++i];
+      } else if (a == "-h" || a == "--help") {
+        std::cout << "usage: driver_rs485 --config FILE\n"
+                     "Polls the BR-SD1/SO1/SBS1 boards of one RS-485 bus and publishes\n"
+                     "LL_DATA_SRFS, LL_DATA_ODO and LL_DATA_BEACONS (beacon ids from\n"
+                     "LL_DATA_ACTIVE_BEACONS); see docs/daemons.md. Examples:\n"
+                     "/etc/advee/driver_rs485a.yaml (bus A), /etc/advee/driver_rs485b.yaml (bus B).\n";
+        return 0;
+      } else {
+        std::cerr << "driver_rs485: unknown argument " << a << " (see --help)\n";
+        return module::exit_code(module::ExitKind::Other, 1);
+      }
+    }
+    if (config.empty()) {
+      std::cerr << "driver_rs485: --config FILE is required (one file per bus)\n";
+      return module::exit_code(module::ExitKind::Other, 1);
+    }
+    const auto cfg = driver_rs485::parse_rs485_config(module::ConfigNode::load_file(config));
+    module::Module m(cfg.module);
+    std::unique_ptr<rs485::Bus> bus;
+    try {
+      rs485::BusOptions o;
+      o.config = rs485::BusConfig{cfg.bus.baud, cfg.bus.timeout, cfg.bus.retries, 2};
+      bus = std::make_unique<rs485::Bus>(cfg.bus.device, o);
+    } catch (const std::system_error& e) {
+      const module::ModuleExit ex(module::ExitKind::Device, driver_rs485::kExitNoBus,
+                                  std::string("bus ") + cfg.bus.device + ": " + e.what());
+      m.errors().report(module::Severity::Error, module::ErrorType::Device, ex.code(), ex.what(), true);
+      return ex.code();
+    }
+    auto status = [b = bus.get()](std::uint8_t addr) -> std::optional<rs485::NodeStatus> {
+      try {
+        return b->node(addr);
+      } catch (const std::system_error&) {
+        return std::nullopt;
+      }
+    };
+    int code = 0;
+    try {
+      driver_rs485::Rs485Driver driver(m, cfg, *bus, status);
+      code = m.run();
+    } catch (const module::ModuleExit& e) {
+      m.errors().report(module::Severity::Error, module::ErrorType::Device, e.code(), e.what(), true);
+      return e.code();
+    }
+    return code;
+  });
+}

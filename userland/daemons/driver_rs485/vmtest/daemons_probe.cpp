@@ -1,0 +1,167 @@
+// SPDX-License-Identifier: GPL-2.0
+// advee-daemons-probe: the test end of the driver daemons' channels
+// (tests/vm/daemons/). The LCM URL is LCM_DEFAULT_URL.
+//   listen SECONDS CHANNEL...   one decoded line per message until SECONDS pass:
+//                               "CHANNEL t=RECEIVE_S key=value ..." (t: CLOCK_MONOTONIC)
+//   active-beacons ID...        publish LL_DATA_ACTIVE_BEACONS
+//   power output N on|off | power poweroff | power reboot     publish LL_CMD_POWER
+//   motion SPEED_MPS STEER_RAD HZ SECONDS                     publish LL_CMD_MOTION at HZ
+//   homing                      publish LL_CMD_HOMING (steering)
+#include <poll.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <lcm/lcm-cpp.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "lowlevel/cmd_homing_t.hpp"
+#include "lowlevel/cmd_motion_t.hpp"
+#include "lowlevel/cmd_power_t.hpp"
+#include "lowlevel/data_active_beacons_t.hpp"
+#include "lowlevel/data_beacons_t.hpp"
+#include "lowlevel/data_odo_t.hpp"
+#include "lowlevel/data_power_t.hpp"
+#include "lowlevel/data_srfs_t.hpp"
+#include "lowlevel/event_stop_t.hpp"
+
+namespace {
+
+double mono_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::int64_t utime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+template <typename T>
+bool decode(const lcm::ReceiveBuffer* rb, T& m) {
+  return m.decode(rb->data, 0, static_cast<int>(rb->data_size)) >= 0;
+}
+
+std::string num(double v, const char* fmt = "%.4f") {
+  char b[48];
+  std::snprintf(b, sizeof b, fmt, v);
+  return b;
+}
+
+std::string describe(const lcm::ReceiveBuffer* rb, const std::string& ch) {
+  std::ostringstream o;
+  o << ch << " t=" << num(mono_s(), "%.3f");
+  if (lowlevel::data_srfs_t m; ch == "LL_DATA_SRFS" && decode(rb, m)) {
+    o << " module=" << m.module << " srfs=" << m.num_srfs << " irs=" << m.num_irs;
+    for (int i = 0; i < m.num_srfs; ++i) o << " srf" << m.srf_id[i] << "=" << num(m.srf_range_m[i], "%.3f");
+    for (int i = 0; i < m.num_irs; ++i) o << " ir" << m.ir_id[i] << "=" << num(m.ir_range_m[i], "%.3f");
+  } else if (lowlevel::data_odo_t d; ch == "LL_DATA_ODO" && decode(rb, d)) {
+    o << " module=" << d.module << " ticks_left=" << d.ticks_left << " ticks_right=" << d.ticks_right
+      << " interval=" << num(d.interval_s) << " speed=" << num(d.speed_mps) << " yaw=" << num(d.yaw_rate_radps);
+  } else if (lowlevel::data_beacons_t b; ch == "LL_DATA_BEACONS" && decode(rb, b)) {
+    o << " module=" << b.module << " count=" << b.count;
+    for (int i = 0; i < b.count; ++i) o << " b" << b.id[i] << "=" << num(b.bearing_rad[i]);
+  } else if (lowlevel::data_power_t p; ch == "LL_DATA_POWER" && decode(rb, p)) {
+    unsigned mask = 0;
+    for (int i = 0; i < p.num_outputs; ++i) mask |= p.on[i] ? 1u << i : 0u;
+    o << " module=" << p.module << " outputs=" << p.num_outputs << " mask=" << mask
+      << " paused=" << int(p.paused);
+    for (int i = 0; i < p.num_outputs; ++i) o << " i" << i << "=" << num(p.current_a[i], "%.3f");
+  } else if (lowlevel::event_stop_t s; ch == "LL_EVENT_STOP" && decode(rb, s)) {
+    o << " module=" << s.module << " stop=" << int(s.stop) << " source=" << int(s.source)
+      << " age_us=" << (utime() - s.utime);
+  } else {
+    o << " bytes=" << rb->data_size;
+  }
+  return o.str();
+}
+
+struct Printer {
+  void on(const lcm::ReceiveBuffer* rb, const std::string& ch) { std::cout << describe(rb, ch) << std::endl; }
+};
+
+int usage() {
+  std::cerr << "usage: advee-daemons-probe listen SECONDS CHANNEL... | active-beacons ID... |\n"
+               "       power output N on|off | power poweroff|reboot | motion SPEED STEER HZ SECONDS | homing\n";
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return usage();
+  lcm::LCM lcm;
+  if (!lcm.good()) {
+    std::cerr << "advee-daemons-probe: LCM did not start (multicast route?)\n";
+    return 3;
+  }
+  const std::string cmd = argv[1];
+  std::vector<std::string> a(argv + 2, argv + argc);
+  try {
+    if (cmd == "listen" && a.size() >= 2) {
+      Printer p;
+      for (std::size_t i = 1; i < a.size(); ++i) lcm.subscribe(a[i], &Printer::on, &p);
+      const double end = mono_s() + std::stod(a[0]);
+      while (mono_s() < end) {
+        pollfd pfd{lcm.getFileno(), POLLIN, 0};
+        const int left_ms = static_cast<int>((end - mono_s()) * 1000) + 1;
+        if (::poll(&pfd, 1, left_ms) > 0) lcm.handle();
+      }
+      return 0;
+    }
+    if (cmd == "active-beacons") {
+      lowlevel::data_active_beacons_t m{};
+      m.utime = utime();
+      m.module = "daemons-probe";
+      for (const auto& s : a) m.id.push_back(static_cast<std::int16_t>(std::stoi(s)));
+      m.count = static_cast<std::int16_t>(m.id.size());
+      return lcm.publish("LL_DATA_ACTIVE_BEACONS", &m) == 0 ? 0 : 3;
+    }
+    if (cmd == "power" && !a.empty()) {
+      lowlevel::cmd_power_t m{};
+      m.utime = utime();
+      m.module = "daemons-probe";
+      if (a[0] == "output" && a.size() == 3) {
+        m.action = lowlevel::cmd_power_t::ACTION_SET_OUTPUT;
+        m.output = static_cast<std::int8_t>(std::stoi(a[1]));
+        m.on = a[2] == "on";
+      } else if (a[0] == "poweroff" && a.size() == 1) {
+        m.action = lowlevel::cmd_power_t::ACTION_POWEROFF;
+      } else if (a[0] == "reboot" && a.size() == 1) {
+        m.action = lowlevel::cmd_power_t::ACTION_REBOOT;
+      } else {
+        return usage();
+      }
+      return lcm.publish("LL_CMD_POWER", &m) == 0 ? 0 : 3;
+    }
+    if (cmd == "motion" && a.size() == 4) {
+      lowlevel::cmd_motion_t m{};
+      m.module = "daemons-probe";
+      m.speed_mps = std::stod(a[0]);
+      m.steering_rad = std::stod(a[1]);
+      const double hz = std::stod(a[2]);
+      const double end = mono_s() + std::stod(a[3]);
+      while (mono_s() < end) {
+        m.utime = utime();
+        if (lcm.publish("LL_CMD_MOTION", &m) != 0) return 3;
+        std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / hz));
+      }
+      return 0;
+    }
+    if (cmd == "homing" && a.empty()) {
+      lowlevel::cmd_homing_t m{};
+      m.utime = utime();
+      m.module = "daemons-probe";
+      m.axis = lowlevel::cmd_homing_t::AXIS_STEERING;
+      return lcm.publish("LL_CMD_HOMING", &m) == 0 ? 0 : 3;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "advee-daemons-probe: " << e.what() << "\n";
+    return 2;
+  }
+  return usage();
+}
