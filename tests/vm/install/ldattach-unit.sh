@@ -1,0 +1,40 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+# The command of the installed advee-rs485-ldattach@.service (instance
+# ttyTSU0, as udev names it) attaches n_rs485 and keeps it attached while it
+# runs in the foreground (what systemd supervises); stopping it (SIGTERM, as
+# systemctl stop does) detaches the discipline again.
+. "$(dirname "$0")/lib.sh"
+pid=
+cleanup() {
+	[ -n "$pid" ] && kill "$pid" 2>/dev/null && wait "$pid" 2>/dev/null
+	modprobe -r n_rs485 2>/dev/null
+	modprobe -r ts7800_sim 2>/dev/null
+	modprobe -r ts_uart ts7800_fpga 2>/dev/null
+	cleanup_mounts
+}
+trap cleanup EXIT
+
+tap_plan 5
+tap_ok "staging install (system files)" stage_system
+unit=$DEST/usr/lib/systemd/system/advee-rs485-ldattach@.service
+cmd=$(sed -n 's/^ExecStart=//p' "$unit" | sed 's/%I/ttyTSU0/g; s/%i/ttyTSU0/g')
+tap_diag "ExecStart for ttyTSU0: $cmd"
+modprobe ts_uart && modprobe ts7800_sim || { tap_diag "cannot load ts_uart + ts7800_sim"; exit 1; }
+for _i in $(seq 50); do [ -c /dev/ttyTSU0 ] && break; sleep 0.1; done
+
+# The discipline's module is autoloaded by TIOCSETD and referenced while attached.
+refcnt() { cat /sys/module/n_rs485/refcnt 2>/dev/null || echo none; }
+$cmd >"$VMTEST_SCRATCH/ldattach.log" 2>&1 &
+pid=$!
+for _i in $(seq 100); do [ "$(refcnt)" != none ] && [ "$(refcnt)" -gt 0 ] && break; sleep 0.1; done
+tap_ok "n_rs485 attached (module referenced: refcnt $(refcnt))" test "$(refcnt)" != none -a "$(refcnt)" -gt 0
+sleep 1
+tap_ok "ldattach still runs in the foreground (Type=simple)" kill -0 "$pid"
+kill -TERM "$pid"
+wait "$pid" 2>/dev/null
+pid=
+for _i in $(seq 50); do [ "$(refcnt)" = 0 ] && break; sleep 0.1; done
+tap_is "stopping it detaches the discipline (refcnt 0)" "$(refcnt)" 0
+tap_ok "n_rs485 unloads afterwards" modprobe -r n_rs485
+tap_finish
