@@ -1,0 +1,61 @@
+# SPDX-License-Identifier: GPL-2.0
+# Helpers of the daemons VM suite (sourced): LCM on the guest's loopback and
+# the background-process helpers of the modules suite, the simulated FPGA
+# and rs485-sim of the rs485 suite, and the daemons' binaries.
+. "$VMTEST_REPO/tests/vm/modules/lib.sh"
+. "$VMTEST_REPO/tests/vm/rs485/common.inc"
+
+DAEMONS=$VMTEST_BUILD/userland/daemons
+DRIVER_RS485=$DAEMONS/driver_rs485/driver_rs485
+DRIVER_POWER=$DAEMONS/driver_power/driver_power
+DRIVER_CANBUS=$DAEMONS/driver_canbus/driver_canbus
+PROBE=$DAEMONS/driver_rs485/advee-daemons-probe
+RS485CTL=$LIBBIN/rs485ctl
+DSUITE=$VMTEST_REPO/tests/vm/daemons
+
+daemons_cleanup() {
+	bg_kill_all
+	rs485_cleanup
+	net_teardown
+}
+
+# daemons_rs485_up PROGRAM...: LCM route, simulated FPGA, rs485-sim with
+# the robot's boards (boards.yaml); bails out if anything is missing.
+daemons_rs485_up() {
+	rs485_setup "$SIMBIN/rs485-sim" "$PROBE" "$LCMCTL" "$@"
+	trap daemons_cleanup EXIT
+	net_setup || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
+	if ! start_sim "$DSUITE/boards.yaml"; then
+		echo "Bail out! rs485-sim did not start"
+		sed 's/^/# /' "$SCR/sim.err"
+		exit 1
+	fi
+}
+
+# listen SECONDS CHANNEL...: decoded messages into $SCR/listen.out.
+listen() { "$PROBE" listen "$@" >"$SCR/listen.out"; }
+count() { grep -c "^$1 " "$SCR/listen.out"; }
+last() { grep "^$1 " "$SCR/listen.out" | tail -1; }
+
+# mean_field CHANNEL KEY: mean of KEY over the lines of CHANNEL in listen.out.
+mean_field() {
+	grep "^$1 " "$SCR/listen.out" | tr ' ' '\n' | sed -n "s/^$2=//p" |
+		awk '{ s += $1; n++ } END { if (n) printf "%.4f\n", s / n }'
+}
+
+# close_to VALUE WANT TOLERANCE: |VALUE - WANT| <= TOLERANCE (numbers).
+close_to() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
+
+# wait_exit PID SECONDS: the exit status of a background process, 255 if it
+# did not end in time.
+wait_exit() {
+	local i
+	for ((i = 0; i < $2 * 10; i++)); do
+		if ! kill -0 "$1" 2>/dev/null; then
+			wait "$1"
+			return $?
+		fi
+		sleep 0.1
+	done
+	return 255
+}
