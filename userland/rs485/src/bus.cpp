@@ -37,7 +37,20 @@ namespace {
 
 std::error_code last_error() { return {errno, std::system_category()}; }
 
+// After another process detached n_rs485, the tty's new discipline does not
+// know the ioctls of this one (ENOTTY): report that as "not connected".
+std::error_code ioctl_error() {
+  if (errno == ENOTTY) return std::make_error_code(std::errc::not_connected);
+  return last_error();
+}
+
+// How often the event thread checks that the discipline is still attached:
+// a detach wakes poll() only while it is in progress, after which the new
+// discipline's poll() reports nothing, so it is noticed by this check.
+constexpr int kDetachCheckMs = 500;
+
 [[noreturn]] void throw_errno(const std::string& what) { throw std::system_error(last_error(), what); }
+[[noreturn]] void throw_ioctl(const std::string& what) { throw std::system_error(ioctl_error(), what); }
 
 // ioctl() restarted on EINTR: only for the ioctls that are idempotent
 // (configuration, statistics, node state), never for a transaction.
@@ -127,7 +140,7 @@ Result Bus::transact(const Request& request) {
   x.retries = request.options.retries.value_or(RS485_DEFAULT);
   // Not restarted on EINTR: the request may have executed.
   if (::ioctl(fd_.get(), RS485_IOC_XFER, &x) < 0) {
-    result.error = last_error();
+    result.error = ioctl_error();
     return result;
   }
   result.attempts = x.attempts;
@@ -178,10 +191,23 @@ void Bus::start_event_thread() {
 }
 
 void Bus::event_thread_main() {
+  auto still_attached = [this](std::error_code& why) {
+    int current = -1;
+    if (ioctl_retry(fd_.get(), TIOCGETD, &current) < 0) {
+      why = last_error();
+      return false;
+    }
+    if (current != ldisc_) {
+      why = std::make_error_code(std::errc::not_connected);
+      return false;
+    }
+    return true;
+  };
   std::error_code end;
   for (;;) {
     std::array<pollfd, 2> fds{{{fd_.get(), POLLIN, 0}, {stop_.get(), POLLIN, 0}}};
-    if (::poll(fds.data(), fds.size(), -1) < 0) {
+    const int n = ::poll(fds.data(), fds.size(), kDetachCheckMs);
+    if (n < 0) {
       if (errno == EINTR) continue;
       end = last_error();
       break;
@@ -191,6 +217,11 @@ void Bus::event_thread_main() {
       end = std::make_error_code(std::errc::bad_file_descriptor);
       break;
     }
+    // Timeout: the periodic check for a detach by another process.
+    if (n == 0) {
+      if (!still_attached(end)) break;
+      continue;
+    }
     bool got = false;
     try {
       while (auto frame = read_event()) {
@@ -198,21 +229,12 @@ void Bus::event_thread_main() {
         events_.dispatch(*frame);
       }
     } catch (const std::system_error& e) {
-      end = e.code();  // EIO: hangup or detach in progress
+      // EIO: hangup or detach in progress; a bad frame: n_tty's bytes.
+      if (still_attached(end)) end = e.code();
       break;
     }
     if (got) continue;
-    // Woken without a frame: the discipline may be gone (another process set
-    // another one: poll then wakes, read is n_tty's), or the line hung up.
-    int current = -1;
-    if (ioctl_retry(fd_.get(), TIOCGETD, &current) < 0) {
-      end = last_error();
-      break;
-    }
-    if (current != ldisc_) {
-      end = std::make_error_code(std::errc::not_connected);
-      break;
-    }
+    if (!still_attached(end)) break;
     if (fds[0].revents & (POLLHUP | POLLERR)) {
       end = std::make_error_code(std::errc::io_error);
       break;
@@ -223,13 +245,13 @@ void Bus::event_thread_main() {
 
 BusConfig Bus::config() const {
   rs485_config c{};
-  if (ioctl_retry(fd_.get(), RS485_IOC_GET_CONFIG, &c) < 0) throw_errno(device_ + ": get config");
+  if (ioctl_retry(fd_.get(), RS485_IOC_GET_CONFIG, &c) < 0) throw_ioctl(device_ + ": get config");
   return BusConfig{c.baud, std::chrono::microseconds(c.timeout_us), c.retries, c.gap_chars};
 }
 
 void Bus::set_config(const BusConfig& config) {
   rs485_config c{};
-  if (ioctl_retry(fd_.get(), RS485_IOC_GET_CONFIG, &c) < 0) throw_errno(device_ + ": get config");
+  if (ioctl_retry(fd_.get(), RS485_IOC_GET_CONFIG, &c) < 0) throw_ioctl(device_ + ": get config");
   const auto timeout = to_timeout_us(config.timeout);
   if (!timeout)
     throw std::system_error(std::make_error_code(std::errc::invalid_argument), device_ + ": timeout out of range");
@@ -237,12 +259,12 @@ void Bus::set_config(const BusConfig& config) {
   c.timeout_us = *timeout;
   c.retries = config.retries;
   c.gap_chars = config.gap_chars;
-  if (ioctl_retry(fd_.get(), RS485_IOC_SET_CONFIG, &c) < 0) throw_errno(device_ + ": set config");
+  if (ioctl_retry(fd_.get(), RS485_IOC_SET_CONFIG, &c) < 0) throw_ioctl(device_ + ": set config");
 }
 
 BusStats Bus::stats() const {
   rs485_stats s{};
-  if (ioctl_retry(fd_.get(), RS485_IOC_GET_STATS, &s) < 0) throw_errno(device_ + ": get statistics");
+  if (ioctl_retry(fd_.get(), RS485_IOC_GET_STATS, &s) < 0) throw_ioctl(device_ + ": get statistics");
   BusStats b;
   b.tx_frames = s.tx_frames;
   b.tx_bytes = s.tx_bytes;
@@ -267,7 +289,7 @@ BusStats Bus::stats() const {
 NodeStatus Bus::node(std::uint8_t addr) const {
   rs485_node n{};
   n.addr = addr;
-  if (ioctl_retry(fd_.get(), RS485_IOC_GET_NODE, &n) < 0) throw_errno(device_ + ": get node state");
+  if (ioctl_retry(fd_.get(), RS485_IOC_GET_NODE, &n) < 0) throw_ioctl(device_ + ": get node state");
   const auto state = n.state <= RS485_NODE_OFF ? static_cast<NodeState>(n.state) : NodeState::off;
   return NodeStatus{addr, state, n.errors};
 }
@@ -275,7 +297,7 @@ NodeStatus Bus::node(std::uint8_t addr) const {
 void Bus::reset_node(std::uint8_t addr) {
   rs485_node n{};
   n.addr = addr;
-  if (ioctl_retry(fd_.get(), RS485_IOC_RESET_NODE, &n) < 0) throw_errno(device_ + ": reset node state");
+  if (ioctl_retry(fd_.get(), RS485_IOC_RESET_NODE, &n) < 0) throw_ioctl(device_ + ": reset node state");
 }
 
 }  // namespace advee::rs485

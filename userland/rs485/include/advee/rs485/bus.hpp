@@ -85,11 +85,13 @@ class Bus final : public Transport {
 
   // --- Transport ---
   // Errors of the call itself come as system errors (EINVAL: an option out
-  // of range, EINTR, EIO: detached or hung up).
+  // of range, EINTR, EIO: detached or hung up during the call, ENOTCONN: the
+  // discipline is no longer attached).
   Result transact(const Request& request) override;
   // Starts the event thread on the first subscription. The thread ends (and
-  // on_closed runs) on hangup, on detach of the discipline, or on a read
-  // error; it is joined by the destructor. Do not mix with read_event().
+  // on_closed runs) on hangup (EIO), on detach of the discipline by another
+  // process (ENOTCONN, noticed within 0.5 s), or on a read error; it is
+  // joined by the destructor. Do not mix with read_event().
   Subscription subscribe(EventHandler on_event, ClosedHandler on_closed = {}) override;
 
   // Sends one raw frame with write() (no retries); a response, if any, comes
