@@ -46,8 +46,8 @@ rm -rf "$stage"
 "$TOP/scripts/install.sh" --destdir "$stage" --arch "$variant" --modules none
 mkdir -p "$stage/DEBIAN"
 deps="systemd, udev, util-linux, lm-sensors"
-for so in $(find "$stage" -type f -exec sh -c 'head -c 4 "$1" | grep -q ELF' _ {} \; -print |
-		xargs -r readelf -d 2>/dev/null | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | sort -u); do
+for so in $(find "$stage" -type f -exec sh -c 'head -c 4 "$1" | grep -q ELF' _ {} \; -print0 |
+		xargs -0 -r readelf -d 2>/dev/null | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | sort -u); do
 	p=$(soname_package "$so")
 	[ -n "$p" ] || die "no package found for $so"
 	case ", $deps, " in *", $p, "*) ;; *) deps="$deps, $p" ;; esac

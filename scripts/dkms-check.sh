@@ -53,8 +53,10 @@ say "dkms installed: $got"
 unsigned=$(while read -r ko; do [ -n "$(modinfo -F signer "$ko")" ] || basename "$ko"; done <"$work/modules.list")
 [ -z "$unsigned" ] || die "not signed by dkms: $unsigned"
 # Nothing leaked into the host's trees.
-[ -z "$(ls -d /lib/modules/"$kver"/updates/dkms/*.ko 2>/dev/null | xargs -r -n1 basename | grep -Fx -f <(sed 's|.*/||' "$work/modules.list"))" ] ||
-	die "DKMS modules appeared in the host's /lib/modules/$kver/updates/dkms"
+while read -r ko; do
+	[ ! -e "/lib/modules/$kver/updates/dkms/${ko##*/}" ] ||
+		die "${ko##*/} appeared in the host's /lib/modules/$kver/updates/dkms"
+done <"$work/modules.list"
 [ ! -e /var/lib/dkms/advee ] || die "/var/lib/dkms/advee exists: dkms used the host's tree"
 
 say "booting the VM with the modules DKMS installed"

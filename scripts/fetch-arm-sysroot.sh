@@ -13,8 +13,9 @@ set -euo pipefail
 debarch=${1:?debian architecture (armhf|armel)}
 cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$debarch
 # The lists and sources of the private apt setup come from fetch-arm-kernel.sh.
-[ -d "$cache/lists" ] && [ -n "$(ls "$cache/lists" 2>/dev/null | grep -v partial)" ] ||
+if ! compgen -G "$cache/lists/*_Packages*" >/dev/null; then
 	"$TOP/scripts/fetch-arm-kernel.sh" "$debarch" "$(arm_flavour "$debarch")" >/dev/null
+fi
 apt_opts=(-q -oAPT::Architecture="$debarch" -oAPT::Architectures="$debarch"
 	-oDir::State::Lists="$cache/lists" -oDir::State::status="$cache/status"
 	-oDir::Etc::SourceParts="$cache/sources" -oDir::Etc::SourceList="$cache/sources/sources.list"
@@ -22,20 +23,20 @@ apt_opts=(-q -oAPT::Architecture="$debarch" -oAPT::Architectures="$debarch"
 
 # The -dev packages and the runtime libraries behind every .so they link
 # (the cross toolchain brings libc, libstdc++, libgcc).
-pkgs="liblcm-dev liblcm1 libglib2.0-dev libglib2.0-0 libpcre2-8-0 libffi8 libmount1 libblkid1 libselinux1
+pkgs=(liblcm-dev liblcm1 libglib2.0-dev libglib2.0-0 libpcre2-8-0 libffi8 libmount1 libblkid1 libselinux1
 libgpiod-dev libgpiod2 libyaml-cpp-dev libyaml-cpp0.7
 libsystemd-dev libsystemd0 libcap2 libgcrypt20 libgpg-error0 liblz4-1 liblzma5 libzstd1
-libspdlog-dev libspdlog1.10 libfmt-dev libfmt9"
+libspdlog-dev libspdlog1.10 libfmt-dev libfmt9)
 sysroot=$cache/sysroot
 stamp=$sysroot/.advee-packages
-if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$(echo $pkgs)" ]; then
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "${pkgs[*]}" ]; then
 	echo "$sysroot"
 	exit 0
 fi
 mkdir -p "$cache/sysroot-debs"
 rm -f "$cache"/sysroot-debs/*.deb
-say "ARM sysroot ($debarch): apt-get download $(echo $pkgs | wc -w) packages"
-(cd "$cache/sysroot-debs" && apt-get "${apt_opts[@]}" download $pkgs >/dev/null)
+say "ARM sysroot ($debarch): apt-get download ${#pkgs[@]} packages"
+(cd "$cache/sysroot-debs" && apt-get "${apt_opts[@]}" download "${pkgs[@]}" >/dev/null)
 rm -rf "$sysroot"
 mkdir -p "$sysroot"
 for deb in "$cache"/sysroot-debs/*.deb; do dpkg-deb -x "$deb" "$sysroot"; done
@@ -43,5 +44,5 @@ for deb in "$cache"/sysroot-debs/*.deb; do dpkg-deb -x "$deb" "$sysroot"; done
 find "$sysroot" -type l -lname '/*' | while read -r l; do
 	ln -sfn "$sysroot$(readlink "$l")" "$l"
 done
-echo $pkgs >"$stamp"
+echo "${pkgs[*]}" >"$stamp"
 echo "$sysroot"

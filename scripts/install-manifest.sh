@@ -34,7 +34,7 @@ while read -r f; do
 	[ -n "$f" ] || continue
 	hit=0
 	while read -r path _; do
-		# shellcheck disable=SC2053 # glob match on purpose
+		# shellcheck disable=SC2254 # the entry is a glob on purpose
 		case $f in $path) hit=1; break ;; esac
 	done <<<"$entries"
 	[ $hit = 1 ] || { echo "not in docs/install.md: $f"; bad=1; }

@@ -20,7 +20,7 @@ tap_ok "staging install (system files)" stage_system
 unit=$DEST/usr/lib/systemd/system/advee-rs485-ldattach@.service
 cmd=$(sed -n 's/^ExecStart=//p' "$unit" | sed 's/%I/ttyTSU0/g; s/%i/ttyTSU0/g')
 tap_diag "ExecStart for ttyTSU0: $cmd"
-modprobe ts_uart && modprobe ts7800_sim || { tap_diag "cannot load ts_uart + ts7800_sim"; exit 1; }
+if ! modprobe ts_uart || ! modprobe ts7800_sim; then tap_diag "cannot load ts_uart + ts7800_sim"; exit 1; fi
 for _i in $(seq 50); do [ -c /dev/ttyTSU0 ] && break; sleep 0.1; done
 
 # The discipline's module is autoloaded by TIOCSETD and referenced while attached.

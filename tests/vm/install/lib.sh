@@ -1,4 +1,5 @@
 # SPDX-License-Identifier: GPL-2.0
+# shellcheck shell=bash
 # Helpers of the install VM suite (sourced, not a test program): a staging
 # install (scripts/install.sh --destdir) into the guest's tmpfs, and an
 # overlay over /etc so that the installed group and udev rules can be made

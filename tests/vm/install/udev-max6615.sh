@@ -26,8 +26,9 @@ tap_ok "staging install (system files)" stage_system
 tap_ok "rules in place" make_live
 
 # The simulated FPGA with its DIO header and the MAX6615 model on DIO_1/DIO_3.
-modprobe ts7800_dio && modprobe ts7800_sim && modprobe ts7800_dio_i2c ||
-	{ tap_diag "cannot load ts7800_dio + ts7800_sim + ts7800_dio_i2c"; exit 1; }
+if ! modprobe ts7800_dio || ! modprobe ts7800_sim || ! modprobe ts7800_dio_i2c; then
+	tap_diag "cannot load ts7800_dio + ts7800_sim + ts7800_dio_i2c"; exit 1
+fi
 bus=
 for _i in $(seq 100); do
 	for a in /sys/bus/i2c/devices/i2c-*; do

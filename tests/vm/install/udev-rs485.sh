@@ -19,7 +19,7 @@ tap_ok "group advee created by the installed sysusers.d file, rules in place" ma
 gid=$(getent group advee | cut -d: -f3)
 tap_diag "advee gid: ${gid:-none}; udevd running: $(pgrep -x systemd-udevd >/dev/null && echo yes || echo no)"
 
-modprobe ts_uart && modprobe ts7800_sim || { tap_diag "cannot load ts_uart + ts7800_sim"; exit 1; }
+if ! modprobe ts_uart || ! modprobe ts7800_sim; then tap_diag "cannot load ts_uart + ts7800_sim"; exit 1; fi
 for _i in $(seq 50); do [ -e /sys/class/tty/ttyTSU2 ] && break; sleep 0.1; done
 
 # check_bus TTY BUS: one device, four points.
