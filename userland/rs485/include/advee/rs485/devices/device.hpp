@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 // Base of the device drivers: one node at one address on a Transport, with
 // the standard instructions of every device (firmware version, reset).
-// Drivers do not own the transport; it must outlive them.
+// Drivers do not own the transport; it must outlive them. The transport is
+// thread-safe; a driver object is used by one thread at a time (So1 keeps
+// its accumulated counts in the object).
 #pragma once
 
 #include <cstdint>
