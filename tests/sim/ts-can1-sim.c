@@ -15,10 +15,13 @@
  * errors and bit timing on the wire are not modelled.
  *
  * Everything the driver wrote that a user cannot see through SocketCAN is in
- * debugfs (ts-can1-sim/), so tests can check the programming of the card.
+ * debugfs (ts-can1-sim/state), so tests can check the programming of the card;
+ * ts-can1-sim/inject delivers frames from the second node.
  */
 #include <linux/bitfield.h>
 #include <linux/debugfs.h>
+#include <linux/fs.h>
+#include <linux/kernel.h>
 #include <linux/irq.h>
 #include <linux/irq_work.h>
 #include <linux/irqdomain.h>
@@ -27,7 +30,9 @@
 #include <linux/regmap.h>
 #include <linux/seq_file.h>
 #include <linux/spinlock.h>
+#include <linux/string.h>
 #include <linux/ts-can1.h>
+#include <linux/uaccess.h>
 
 #define SIM_DRV_NAME		"ts-can1-sim"
 #define SIM_FIRST_LINE		5
@@ -111,7 +116,7 @@ struct sim_sja {
 	u8 tx[SJA_FRAME_LEN];		/* TX buffer as written */
 	struct sim_frame rx[SIM_RX_FRAMES];
 	unsigned int rx_head, rx_count;
-	u32 tx_frames, rx_frames, self_rx;
+	u32 tx_frames, rx_frames, self_rx, overruns;
 };
 
 struct ts_can1_sim {
@@ -250,6 +255,7 @@ static void sim_sja_flag(struct sim_sja *s, u8 bit)
 static void sim_sja_receive(struct sim_sja *s, const u8 *frame)
 {
 	if (s->rx_count == SIM_RX_FRAMES) {
+		s->overruns++;
 		s->dos = true;
 		sim_sja_flag(s, SJA_IR_DOI);
 		return;
@@ -579,12 +585,85 @@ static int sim_state_show(struct seq_file *m, void *unused)
 		   sim->line);
 	seq_printf(m, "sja mod 0x%02x ier 0x%02x btr0 0x%02x btr1 0x%02x ocr 0x%02x cdr 0x%02x\n",
 		   s->mod, s->ier, s->btr0, s->btr1, s->ocr, s->cdr);
-	seq_printf(m, "frames tx %u rx %u self %u pending %u\n",
-		   s->tx_frames, s->rx_frames, s->self_rx, s->rx_count);
+	seq_printf(m, "frames tx %u rx %u self %u pending %u overruns %u\n",
+		   s->tx_frames, s->rx_frames, s->self_rx, s->rx_count, s->overruns);
 	spin_unlock_irqrestore(&sim->lock, flags);
 	return 0;
 }
 DEFINE_SHOW_ATTRIBUTE(sim_state);
+
+/* The buffer layout of a frame: frame information, identifier, data. */
+static void sim_frame_build(u8 *b, u32 id, const u8 *data, unsigned int len)
+{
+	unsigned int d;
+
+	memset(b, 0, SJA_FRAME_LEN);
+	if (id > 0x7ff) {
+		b[0] = SJA_FI_FF | len;
+		b[1] = id >> 21;
+		b[2] = id >> 13;
+		b[3] = id >> 5;
+		b[4] = (id & 0x1f) << 3;
+		d = 5;
+	} else {
+		b[0] = len;
+		b[1] = id >> 3;
+		b[2] = (id & 0x7) << 5;
+		d = 3;
+	}
+	memcpy(b + d, data, len);
+}
+
+/*
+ * Frames from the second node: "ID DATA [COUNT]" (hex identifier, extended
+ * above 0x7ff; hex data bytes, "-" for none; COUNT copies arrive back to
+ * back, before the CPU can read any, so more than the FIFO holds overrun).
+ * -ENETDOWN while the chip is in reset mode: it receives nothing then.
+ */
+static ssize_t sim_inject_write(struct file *file, const char __user *ubuf,
+				size_t count, loff_t *ppos)
+{
+	struct ts_can1_sim *sim = file->private_data;
+	char buf[64], hex[17];
+	u8 data[8], frame[SJA_FRAME_LEN];
+	unsigned int n = 1, len, i;
+	unsigned long flags;
+	int fields, ret;
+	u32 id;
+
+	if (count >= sizeof(buf))
+		return -EINVAL;
+	if (copy_from_user(buf, ubuf, count))
+		return -EFAULT;
+	buf[count] = '\0';
+	fields = sscanf(buf, "%x %16s %u", &id, hex, &n);
+	if (fields < 2 || id > 0x1fffffff || !n || n > 64)
+		return -EINVAL;
+	len = strcmp(hex, "-") ? strlen(hex) / 2 : 0;
+	if (len > sizeof(data) || (len && strlen(hex) % 2) ||
+	    (len && hex2bin(data, hex, len)))
+		return -EINVAL;
+	sim_frame_build(frame, id, data, len);
+
+	spin_lock_irqsave(&sim->lock, flags);
+	if (sim->sja.mod & SJA_MOD_RM) {
+		ret = -ENETDOWN;
+	} else {
+		for (i = 0; i < n; i++)
+			sim_sja_receive(&sim->sja, frame);
+		sim_update_line(sim);
+		ret = count;
+	}
+	spin_unlock_irqrestore(&sim->lock, flags);
+	return ret;
+}
+
+static const struct file_operations sim_inject_fops = {
+	.owner	= THIS_MODULE,
+	.open	= simple_open,
+	.write	= sim_inject_write,
+	.llseek	= noop_llseek,
+};
 
 /* ---- device ------------------------------------------------------------- */
 
@@ -674,6 +753,7 @@ static int sim_probe(struct platform_device *pdev)
 	}
 	sim->debugfs = debugfs_create_dir(SIM_DRV_NAME, NULL);
 	debugfs_create_file("state", 0444, sim->debugfs, sim, &sim_state_fops);
+	debugfs_create_file("inject", 0200, sim->debugfs, sim, &sim_inject_fops);
 	ret = devm_add_action_or_reset(dev, sim_teardown, sim);
 	if (ret)
 		return ret;

@@ -48,3 +48,16 @@ driver_bound() { [ -e "$DEV/driver" ]; }
 
 # sim_field KEY: the value after KEY in the simulator's state file
 sim_field() { awk -v k="$1" '{ for (i = 1; i < NF; i++) if ($i == k) { print $(i + 1); exit } }' "$SIMSTATE"; }
+
+# candump_ready PID: wait (up to 5 s) until the candump started as PID (or
+# as a child of PID, e.g. under timeout) has opened its CAN socket, so that
+# no frame sent afterwards can be missed by a slow start under emulation.
+candump_ready() {
+	for _i in $(seq 50); do
+		for _p in "$1" $(pgrep -P "$1" 2>/dev/null); do
+			ls -l "/proc/$_p/fd" 2>/dev/null | grep -q 'socket:' && { sleep 0.2; return 0; }
+		done
+		sleep 0.1
+	done
+	return 1
+}

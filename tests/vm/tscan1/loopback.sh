@@ -28,7 +28,7 @@ tap_is "SJA1000 in operating mode" "$(sim_field mod)" 0x00
 
 candump -L -n 4 "$IF" >"$OUT" 2>&1 &
 CAND=$!
-sleep 0.5
+candump_ready "$CAND" || tap_diag "candump did not open its socket"
 rx0=$(stat rx packets)
 cansend "$IF" 123#DEADBEEF
 cansend "$IF" 12345678#0011223344556677
@@ -65,7 +65,7 @@ ip link set "$IF" up
 rx0=$(stat rx packets)
 candump -L -n 1 "$IF" >"$OUT" 2>&1 &
 CAND=$!
-sleep 0.5
+candump_ready "$CAND" || tap_diag "candump did not open its socket"
 cansend "$IF" 7FF#CAFE
 for _i in $(seq 50); do
 	[ -s "$OUT" ] && break
