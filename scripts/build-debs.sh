@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# build-debs.sh [native|armhf|armel]: Debian packages from a staging install
-# (scripts/install.sh), built with dpkg-deb into build/debs/:
+# build-debs.sh [native|armhf|armel] [--out DIR]: Debian packages from a
+# staging install (scripts/install.sh), built with dpkg-deb into build/debs/
+# (or DIR):
 #   advee_VERSION_ARCH.deb       userland, udev rules, systemd units, sysusers,
 #                                networkd, sensors and default configuration
 #                                (everything of /etc is a conffile); Depends
@@ -13,14 +14,21 @@
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
-variant=${1:-native}
+variant=native
+out=$BUILD/debs
+while [ $# -gt 0 ]; do
+	case $1 in
+	--out) out=$2; shift 2 ;;
+	native|armhf|armel) variant=$1; shift ;;
+	*) die "build-debs.sh: unknown argument $1" ;;
+	esac
+done
 case $variant in
 native) debarch=$(dpkg --print-architecture) ;;
 armhf|armel) debarch=$variant ;;
 *) die "build-debs.sh: native, armhf or armel, not $variant" ;;
 esac
 ver=$(sed -n 's/^PACKAGE_VERSION="\(.*\)"$/\1/p' "$TOP/dkms/dkms.conf")
-out=$BUILD/debs
 mkdir -p "$out"
 
 # soname_package SONAME: the Debian package shipping it (for the target arch).
@@ -69,20 +77,27 @@ Description: Advee robot low level: daemons, tools, udev rules, systemd units
 EOF
 (cd "$stage" && find etc -type f 2>/dev/null | sed 's|^|/|') >"$stage/DEBIAN/conffiles"
 [ -s "$stage/DEBIAN/conffiles" ] || rm -f "$stage/DEBIAN/conffiles"
+# DPKG_ROOT: installation into another root (dpkg --root with
+# --force-script-chrootless) creates the user there and leaves the running
+# system alone.
 cat >"$stage/DEBIAN/postinst" <<'EOF'
 #!/bin/sh
 set -e
 if [ "$1" = configure ]; then
-	systemd-sysusers advee.conf || true
-	udevadm control --reload || true
-	systemctl daemon-reload || true
+	systemd-sysusers --root="${DPKG_ROOT:-/}" "${DPKG_ROOT}/usr/lib/sysusers.d/advee.conf"
+	if [ -z "$DPKG_ROOT" ]; then
+		udevadm control --reload || true
+		systemctl daemon-reload || true
+	fi
 fi
 EOF
 cat >"$stage/DEBIAN/postrm" <<'EOF'
 #!/bin/sh
 set -e
-systemctl daemon-reload 2>/dev/null || true
-udevadm control --reload 2>/dev/null || true
+if [ -z "$DPKG_ROOT" ]; then
+	systemctl daemon-reload 2>/dev/null || true
+	udevadm control --reload 2>/dev/null || true
+fi
 EOF
 chmod 0755 "$stage/DEBIAN/postinst" "$stage/DEBIAN/postrm"
 dpkg-deb --root-owner-group --build "$stage" "$out/advee_${ver}_$debarch.deb" >/dev/null

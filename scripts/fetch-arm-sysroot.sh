@@ -3,7 +3,8 @@
 #
 # fetch-arm-sysroot.sh DEBARCH: Debian's armel/armhf builds of the libraries
 # the userland links (LCM, libgpiod, yaml-cpp, libsystemd, spdlog/fmt and
-# what their .so files need), downloaded with apt-get download through the
+# what their .so files need, and the header-only Eigen, CLI11, nlohmann-json),
+# downloaded with apt-get download through the
 # private apt setup of fetch-arm-kernel.sh (its lists dir; no foreign
 # architecture is ever added to dpkg) and extracted into
 # .cache/arm/DEBARCH/sysroot. Prints that directory.
@@ -22,11 +23,14 @@ apt_opts=(-q -oAPT::Architecture="$debarch" -oAPT::Architectures="$debarch"
 	-oDir::Cache="$cache/apt-cache" -oDebug::NoLocking=1 -oAPT::Sandbox::User=root)
 
 # The -dev packages and the runtime libraries behind every .so they link
-# (the cross toolchain brings libc, libstdc++, libgcc).
+# (the cross toolchain brings libc, libstdc++, libgcc); the header-only ones
+# (Eigen, CLI11, nlohmann-json: Architecture all) too, so that find_package
+# finds them in the target's root like the others.
 pkgs=(liblcm-dev liblcm1 libglib2.0-dev libglib2.0-0 libpcre2-8-0 libffi8 libmount1 libblkid1 libselinux1
 libgpiod-dev libgpiod2 libyaml-cpp-dev libyaml-cpp0.7
 libsystemd-dev libsystemd0 libcap2 libgcrypt20 libgpg-error0 liblz4-1 liblzma5 libzstd1
-libspdlog-dev libspdlog1.10 libfmt-dev libfmt9)
+libspdlog-dev libspdlog1.10 libfmt-dev libfmt9
+libeigen3-dev libcli11-dev nlohmann-json3-dev)
 sysroot=$cache/sysroot
 stamp=$sysroot/.advee-packages
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "${pkgs[*]}" ]; then
