@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "advee/module/subscription.hpp"
 #include "advee/module/error.hpp"
 #include "common/error_t.hpp"
 
@@ -18,16 +19,13 @@ namespace {
 
 struct Received {
   std::vector<common::error_t> msgs;
-  void on(const lcm::ReceiveBuffer*, const std::string&, const common::error_t* m) {
-    msgs.push_back(*m);
-  }
 };
 
 TEST(ErrorReporter, ThresholdsForPrintingAndSending) {
   lcm::LCM lcm("memq://");
   ASSERT_TRUE(lcm.good());
   Received rx;
-  lcm.subscribe("CM_DATA_ERROR", &Received::on, &rx);
+  Subscription<common::error_t> sub(lcm, "CM_DATA_ERROR", [&](const common::error_t& m) { rx.msgs.push_back(m); });
   ErrorReporter::Config cfg;
   cfg.print_severity = static_cast<std::int8_t>(Severity::Warning);
   cfg.send_severity = static_cast<std::int8_t>(Severity::Error);
@@ -66,7 +64,7 @@ TEST(ErrorReporter, ThresholdsForPrintingAndSending) {
 TEST(ErrorReporter, NoneSilencesAndTheLogKeepsEverything) {
   lcm::LCM lcm("memq://");
   Received rx;
-  lcm.subscribe("ERRS", &Received::on, &rx);
+  Subscription<common::error_t> sub(lcm, "ERRS", [&](const common::error_t& m) { rx.msgs.push_back(m); });
   ErrorReporter::Config cfg{kSeverityNone, kSeverityNone, "ERRS"};
   ErrorReporter r("m", cfg, &lcm);
   const auto log = std::filesystem::temp_directory_path() /

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "advee/module/module.hpp"
+#include "advee/module/subscription.hpp"
 #include "common/cmd_state_t.hpp"
 #include "common/data_state_t.hpp"
 
@@ -21,9 +22,6 @@ namespace {
 
 struct Announcements {
   std::vector<common::data_state_t> msgs;
-  void on(const lcm::ReceiveBuffer*, const std::string&, const common::data_state_t* m) {
-    msgs.push_back(*m);
-  }
   State last() const { return msgs.empty() ? State::Unknown : static_cast<State>(msgs.back().state); }
 };
 
@@ -58,7 +56,7 @@ class ModuleTest : public testing::Test {
 TEST_F(ModuleTest, StartsInInitAndAnnouncesTheStartState) {
   Module m(opts());
   Announcements a;
-  m.lcm().subscribe("CM_DATA_STATE", &Announcements::on, &a);
+  Subscription<common::data_state_t> sub(m.lcm(), "CM_DATA_STATE", [&](const common::data_state_t& s) { a.msgs.push_back(s); });
   EXPECT_EQ(m.state(), State::Init);
   ASSERT_TRUE(m.request_state(State::Run, false, "test"));
   m.run_once(0ms);
@@ -71,7 +69,7 @@ TEST_F(ModuleTest, StartsInInitAndAnnouncesTheStartState) {
 TEST_F(ModuleTest, AnnouncesEveryPeriod) {
   Module m(opts(20ms));
   Announcements a;
-  m.lcm().subscribe("CM_DATA_STATE", &Announcements::on, &a);
+  Subscription<common::data_state_t> sub(m.lcm(), "CM_DATA_STATE", [&](const common::data_state_t& s) { a.msgs.push_back(s); });
   m.request_state(State::Pause, false, "test");
   spin(m, 200ms);
   // 1 for the change + about 10 periodic ones; at least half of them.
@@ -109,7 +107,7 @@ TEST_F(ModuleTest, CommandsForOtherModulesAreIgnoredAndStarAddressesAll) {
 TEST_F(ModuleTest, StopOnlyByHand) {
   Module m(opts());
   Announcements a;
-  m.lcm().subscribe("CM_DATA_STATE", &Announcements::on, &a);
+  Subscription<common::data_state_t> sub(m.lcm(), "CM_DATA_STATE", [&](const common::data_state_t& s) { a.msgs.push_back(s); });
   std::vector<std::pair<State, State>> changes;
   m.on_state_change([&](State f, State t) { changes.emplace_back(f, t); });
   m.request_state(State::Run, false, "test");

@@ -10,6 +10,7 @@
 
 #include "advee/module/exit_code.hpp"
 #include "advee/module/log_dir.hpp"
+#include "advee/module/subscription.hpp"
 #include "advee/module/time.hpp"
 #include "advee/msgs/channels.hpp"
 #include "advee/watchdog/process.hpp"
@@ -36,12 +37,6 @@ std::string_view to_string(Phase p) {
 
 namespace {
 
-template <typename Msg>
-void forward(const lcm::ReceiveBuffer*, const std::string&, const Msg* m,
-             std::function<void(const Msg&)>* fn) {
-  (*fn)(*m);
-}
-
 std::string ms_text(Millis d) { return std::to_string(d.count()) + " ms"; }
 
 }  // namespace
@@ -55,14 +50,12 @@ Supervisor::Supervisor(module::Module& self, SupervisorConfig cfg)
   }
   // Announcements only update timestamps: handled inside LCM's dispatch.
   // Commands may start or signal processes: deferred to the loop proper.
-  state_handler_ = std::make_unique<std::function<void(const common::data_state_t&)>>(
+  state_sub_ = std::make_unique<module::Subscription<common::data_state_t>>(
+      self_.lcm(), std::string(msgs::kDataState.name),
       [this](const common::data_state_t& m) { on_announce(m); });
-  cmd_handler_ = std::make_unique<std::function<void(const common::cmd_state_t&)>>(
+  cmd_sub_ = std::make_unique<module::Subscription<common::cmd_state_t>>(
+      self_.lcm(), std::string(msgs::kCmdState.name),
       [this](const common::cmd_state_t& m) { self_.post([this, m] { on_command(m); }); });
-  self_.lcm().subscribeFunction(std::string(msgs::kDataState.name),
-                                &forward<common::data_state_t>, state_handler_.get());
-  self_.lcm().subscribeFunction(std::string(msgs::kCmdState.name), &forward<common::cmd_state_t>,
-                                cmd_handler_.get());
   self_.on_signal(SIGCHLD, [this](const signalfd_siginfo&) { reap(); });
   self_.every(cfg_.check_period, [this] { check(); }, false);
   self_.on_state_change([this](State, State to) {

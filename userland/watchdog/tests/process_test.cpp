@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "advee/module/subscription.hpp"
 #include "common/cmd_state_t.hpp"
 #include "common/data_module_phase_t.hpp"
 #include "common/data_state_t.hpp"
@@ -49,8 +50,10 @@ class Supervised : public testing::Test {
     url_ = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
     lcm_ = std::make_unique<lcm::LCM>(url_);
     ASSERT_TRUE(lcm_->good()) << "no LCM on " << url_ << " (multicast route on lo?)";
-    lcm_->subscribe("CM_DATA_STATE", &Supervised::on_state, this);
-    lcm_->subscribe("CM_DATA_MODULES", &Supervised::on_phase, this);
+    state_sub_ = std::make_unique<advee::module::Subscription<common::data_state_t>>(
+        *lcm_, "CM_DATA_STATE", [this](const common::data_state_t& m) { on_state(m); });
+    phase_sub_ = std::make_unique<advee::module::Subscription<common::data_module_phase_t>>(
+        *lcm_, "CM_DATA_MODULES", [this](const common::data_module_phase_t& m) { phases_.push_back(m); });
     dir_ = std::filesystem::temp_directory_path() /
            ("advee-watchdog-test-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir_);
@@ -90,12 +93,9 @@ class Supervised : public testing::Test {
     }
   }
 
-  void on_state(const lcm::ReceiveBuffer*, const std::string&, const common::data_state_t* m) {
-    states_.push_back({Clock::now(), m->module, m->state, m->pid});
-    if (m->module != "watchdog") seen_pids_.insert(m->pid);
-  }
-  void on_phase(const lcm::ReceiveBuffer*, const std::string&, const common::data_module_phase_t* m) {
-    phases_.push_back(*m);
+  void on_state(const common::data_state_t& m) {
+    states_.push_back({Clock::now(), m.module, m.state, m.pid});
+    if (m.module != "watchdog") seen_pids_.insert(m.pid);
   }
 
   // Handles messages until pred() or the timeout; returns pred().
@@ -138,6 +138,8 @@ class Supervised : public testing::Test {
 
   std::string url_;
   std::unique_ptr<lcm::LCM> lcm_;
+  std::unique_ptr<advee::module::Subscription<common::data_state_t>> state_sub_;
+  std::unique_ptr<advee::module::Subscription<common::data_module_phase_t>> phase_sub_;
   std::filesystem::path dir_;
   pid_t wd_pid_ = -1;
   std::vector<Announce> states_;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "advee/driver_aux/aux_driver.hpp"
+#include "advee/module/subscription.hpp"
 #include "lowlevel/data_fans_t.hpp"
 #include "lowlevel/data_temperature_t.hpp"
 
@@ -66,8 +67,6 @@ class FakeHwmon : public testing::Test {
 struct Rx {
   std::vector<lowlevel::data_temperature_t> temps;
   std::vector<lowlevel::data_fans_t> fans;
-  void t(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::data_temperature_t* m) { temps.push_back(*m); }
-  void f(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::data_fans_t* m) { fans.push_back(*m); }
 };
 
 void spin(module::Module& m, std::chrono::milliseconds d) {
@@ -91,8 +90,8 @@ TEST_F(FakeHwmon, PublishesTemperaturesAndFansWhileRunning) {
   auto cfg = config();
   module::Module m(cfg.module);
   Rx rx;
-  m.lcm().subscribe("LL_DATA_TEMPERATURE", &Rx::t, &rx);
-  m.lcm().subscribe("LL_DATA_FANS", &Rx::f, &rx);
+  module::Subscription<lowlevel::data_temperature_t> st(m.lcm(), "LL_DATA_TEMPERATURE", [&](const auto& x) { rx.temps.push_back(x); });
+  module::Subscription<lowlevel::data_fans_t> sf(m.lcm(), "LL_DATA_FANS", [&](const auto& x) { rx.fans.push_back(x); });
   AuxDriver d(m, cfg);
   m.request_state(module::State::Run, false, "test");
   spin(m, 150ms);

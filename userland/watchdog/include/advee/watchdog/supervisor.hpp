@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "advee/module/module.hpp"
+#include "advee/module/subscription.hpp"
 #include "advee/watchdog/backoff.hpp"
 #include "advee/watchdog/config.hpp"
 
@@ -81,9 +82,8 @@ class Supervisor {
   SupervisorConfig cfg_;
   std::vector<Proc> procs_;
   std::function<void()> on_change_;
-  // Contexts of the LCM subscriptions (LCM keeps raw pointers to them).
-  std::unique_ptr<std::function<void(const common::data_state_t&)>> state_handler_;
-  std::unique_ptr<std::function<void(const common::cmd_state_t&)>> cmd_handler_;
+  std::unique_ptr<module::Subscription<common::data_state_t>> state_sub_;
+  std::unique_ptr<module::Subscription<common::cmd_state_t>> cmd_sub_;
   bool shut_down_ = false;
 };
 
