@@ -16,7 +16,7 @@ overlay_rw() {
 	local name
 	name=$(echo "$1" | tr / _)
 	mkdir -p "$OVL/$name/upper" "$OVL/$name/work" || return 1
-	grep -q '^overlay ' /proc/modules || modprobe overlay || return 1
+	grep -qw overlay /proc/filesystems || modprobe overlay || return 1
 	mount -t overlay overlay \
 		-o "lowerdir=$1,upperdir=$OVL/$name/upper,workdir=$OVL/$name/work" "$1" || return 1
 	MOUNTS=("$1" "${MOUNTS[@]}")
