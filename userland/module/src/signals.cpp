@@ -24,6 +24,11 @@ SignalFd::SignalFd(const std::vector<int>& signals) {
 }
 
 SignalFd::~SignalFd() {
+  // Consume what is still pending: unblocked, a SIGTERM that arrived while
+  // the module was already ending would kill the process and replace its
+  // exit code with 143.
+  while (read()) {
+  }
   fd_.reset();
   pthread_sigmask(SIG_SETMASK, &old_mask_, nullptr);
 }

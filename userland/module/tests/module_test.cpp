@@ -155,6 +155,17 @@ TEST_F(ModuleTest, SigtermMeansTerminate) {
   EXPECT_EQ(m.state(), State::Terminate);
 }
 
+TEST_F(ModuleTest, ASigtermDuringTheEndDoesNotOutliveTheModule) {
+  {
+    Module m(opts());
+    m.every(1ms, [] { throw ModuleExit(ExitKind::Device, 2, "gone"); });
+    EXPECT_EQ(m.run(), 0x22);
+    ASSERT_EQ(::kill(::getpid(), SIGTERM), 0);  // pending, the loop no longer reads it
+  }
+  // Still alive: the destructor discarded it instead of unblocking it.
+  SUCCEED();
+}
+
 TEST_F(ModuleTest, ModuleExitFromWorkEndsRunWithItsCode) {
   Module m(opts());
   m.every(1ms, [] { throw ModuleExit(ExitKind::Device, 3, "sensor gone"); });

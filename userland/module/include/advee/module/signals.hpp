@@ -2,7 +2,8 @@
 // Signals as a file descriptor: the listed signals are blocked in the calling
 // thread (create this before any other thread, LCM's receive thread included,
 // so that every thread inherits the mask) and read from a signalfd.
-// Destruction restores the previous mask.
+// Destruction discards the signals still pending in the set and restores
+// the previous mask.
 #pragma once
 
 #include <signal.h>
