@@ -6,6 +6,8 @@
 // RUN / TERMINATE is obeyed. Measured latencies are printed.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -73,7 +75,8 @@ class Supervised : public testing::Test {
 
   // modules: "name: args..." YAML flow lists for advee-test-module.
   void start(const std::map<std::string, std::string>& modules,
-             const std::set<std::string>& kept_down = {}) {
+             const std::set<std::string>& kept_down = {},
+             const std::map<std::string, std::string>& env = {}) {
     const auto cfg = dir_ / "watchdog.yaml";
     std::ofstream f(cfg);
     f << "module: {lcm_url: \"" << url_ << "\", print_severity: notice}\n"
@@ -88,6 +91,7 @@ class Supervised : public testing::Test {
     wd_pid_ = ::fork();
     ASSERT_GE(wd_pid_, 0);
     if (wd_pid_ == 0) {
+      for (const auto& [k, v] : env) ::setenv(k.c_str(), v.c_str(), 1);
       ::execl(ADVEE_WATCHDOG_BIN, ADVEE_WATCHDOG_BIN, "--config", cfg.c_str(), nullptr);
       ::_exit(127);
     }
@@ -285,6 +289,58 @@ TEST_F(Supervised, StartFalseWaitsForRun) {
   EXPECT_EQ(find_state("tmod", 0, [](auto&) { return true; }), nullptr);
   command("tmod", common::data_state_t::RUN);
   EXPECT_GT(running_pid("tmod", 3000ms), 0);
+}
+
+// systemd's side of sd_notify: a datagram socket named in NOTIFY_SOCKET.
+// READY=1 with a STATUS, WATCHDOG=1 pings at about half of WATCHDOG_USEC,
+// STATUS updates when a module changes phase, and the module does not
+// inherit the supervisor's notify socket.
+TEST_F(Supervised, NotifiesSystemd) {
+  const auto sock_path = dir_ / "notify.sock";
+  const int fd = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_un sa{};
+  sa.sun_family = AF_UNIX;
+  std::snprintf(sa.sun_path, sizeof sa.sun_path, "%s", sock_path.c_str());
+  ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&sa), sizeof sa), 0);
+  // 400 ms: pings expected about every 200 ms.
+  start({{"tmod", ""}}, {}, {{"NOTIFY_SOCKET", sock_path.string()}, {"WATCHDOG_USEC", "400000"}});
+  std::vector<std::pair<Clock::time_point, std::string>> got;
+  const auto end = Clock::now() + 2500ms;
+  while (Clock::now() < end) {
+    lcm_->handleTimeout(10);  // keep the announcements flowing into states_
+    char buf[512];
+    const ssize_t n = ::recv(fd, buf, sizeof buf - 1, MSG_DONTWAIT);
+    if (n > 0) got.emplace_back(Clock::now(), std::string(buf, static_cast<std::size_t>(n)));
+  }
+  ::close(fd);
+  ASSERT_FALSE(got.empty()) << "nothing on NOTIFY_SOCKET";
+  std::vector<Clock::time_point> pings;
+  bool running_status = false, ready = false, ping_before_ready = false;
+  for (const auto& [t, m] : got) {
+    if (m == "WATCHDOG=1") {
+      pings.push_back(t);
+      ping_before_ready |= !ready;
+    }
+    ready |= m.rfind("READY=1\nSTATUS=", 0) == 0;
+    running_status |= m == "STATUS=1/1 modules running";
+  }
+  EXPECT_TRUE(ready);
+  EXPECT_FALSE(ping_before_ready);
+  EXPECT_TRUE(running_status);
+  // 2.5 s at one ping per 200 ms: about 12; well above the 6 that a ping
+  // per WATCHDOG_USEC would give.
+  std::printf("WATCHDOG=1 pings in 2.5 s with WATCHDOG_USEC=400000: %zu\n", pings.size());
+  EXPECT_GE(pings.size(), 8u);
+  for (std::size_t i = 1; i < pings.size(); ++i)
+    EXPECT_LT(ms_between(pings[i - 1], pings[i]), 400.0) << "ping " << i;
+  // The module announces, and does not talk to systemd itself.
+  const Announce* a = find_state("tmod", 0, [](auto&) { return true; });
+  ASSERT_NE(a, nullptr);
+  std::ifstream environ("/proc/" + std::to_string(a->pid) + "/environ");
+  std::string env((std::istreambuf_iterator<char>(environ)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(env.find("NOTIFY_SOCKET="), std::string::npos);
+  EXPECT_NE(env.find("LCM_DEFAULT_URL=" + url_), std::string::npos);
 }
 
 }  // namespace
