@@ -24,12 +24,13 @@ if ! start_sim "$SUITE/soak.yaml"; then
 	sed 's/^/# /' "$SCR/sim.err"
 	exit 1
 fi
-# Slack per call: 1 s over 3 x 100 ms. A stuck call is unbounded; what the
-# slack absorbs is TCG on a shared host stalling the virtual CPUs for some
-# hundred ms (the first runs measured calls of 0.95 s with no fault injected
-# beyond the 1 % bad CRCs). The maximum is printed, so a trend stays visible.
+# Slack per call: 2 s over 3 x 100 ms. A stuck call is unbounded; what the
+# slack absorbs is TCG on a shared 2-core host stalling the virtual CPUs
+# (measured: calls of 0.95 s in 60 s runs and one of 1.45 s in 600 s, with
+# no fault injected but the 1 % bad CRCs). The maximum is printed, so a trend
+# stays visible.
 "$SIMBIN/rs485-load" --control "$CTL" --seconds "$seconds" --timeout-ms "$TIMEOUT_MS" --retries 2 \
-	--slack-ms 1000 --rss-slack-kb 512 >"$SCR/load.out" 2>"$SCR/load.err"
+	--slack-ms 2000 --rss-slack-kb 512 >"$SCR/load.out" 2>"$SCR/load.err"
 rc=$?
 sed 's/^/# /' "$SCR/load.out" "$SCR/load.err"
 tap_is "rs485-load: every check held (exit status)" "$rc" 0
