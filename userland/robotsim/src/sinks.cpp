@@ -10,10 +10,11 @@
 namespace advee::robotsim {
 
 namespace {
-std::string metres(const std::optional<double>& m) {
+// `decimals`: the board's resolution (SRF: cm, IR: 2 mm) needs no more.
+std::string metres(const std::optional<double>& m, int decimals) {
   if (!m) return "none";
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", *m);  // the boards report whole centimetres
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, *m);
   return buf;
 }
 }  // namespace
@@ -33,12 +34,12 @@ void Rs485SimSink::publish(const SensorFrame& f) {
   for (std::size_t i = 0; i < f.srf_m.size() && i < desc_.srf.sensors.size(); ++i) {
     const auto& s = desc_.srf.sensors[i];
     const std::string key = board(s.board) + " srf " + std::to_string(s.index);
-    set(key, "set " + key + " " + metres(f.srf_m[i]));
+    set(key, "set " + key + " " + metres(f.srf_m[i], 2));
   }
   for (std::size_t i = 0; i < f.ir_m.size() && i < desc_.ir.sensors.size(); ++i) {
     const auto& s = desc_.ir.sensors[i];
     const std::string key = board(s.board) + " ir " + std::to_string(s.index);
-    set(key, "set " + key + " " + metres(f.ir_m[i]));
+    set(key, "set " + key + " " + metres(f.ir_m[i], 3));
   }
   set("ticks", "set " + dev_.so1 + " ticks " + std::to_string(f.ticks[0]) + " " + std::to_string(f.ticks[1]));
   std::set<int> seen;

@@ -36,7 +36,7 @@ TEST(Rs485SimSink, SendsEveryValueOnceThenOnlyChanges) {
     return std::string(b);
   }() + " " + std::to_string(f.beacons[2].quality)));
   EXPECT_TRUE(rec.has("set a:so1@0x20 ticks 0 0"));
-  EXPECT_TRUE(rec.has("set a:sd1@0x11 ir 1 0.12"));
+  EXPECT_TRUE(rec.has("set a:sd1@0x11 ir 1 0.120"));
   EXPECT_TRUE(rec.has("set b:sbs1@0x30 beacon 1 " + [&] {
     char b[32];
     std::snprintf(b, sizeof b, "%.2f", f.beacons[0].bearing_cdeg / 100.0);

@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
       "  2 bad option or unusable map, robot or path file (the message names file, line and field)\n\n"
       "LIMITS: the drive commands come from --path; the simulated EPOS/IclA (canopen-sim-drive) offer no\n"
       "hook to read their speed and steering yet.");
-  const std::string etc = "/etc/advee/robotsim/";
+  const std::string etc = ADVEE_ROBOTSIM_SYSCONFDIR "/";
   std::string map_file = etc + "room.yaml", robot_file = etc + "robot.yaml", path_file = etc + "square-path.yaml";
   double rate = 100, publish_rate = 10, duration = 0;
   unsigned seed = 1;
