@@ -73,7 +73,7 @@ std::string describe(const lcm::ReceiveBuffer* rb, const std::string& ch) {
     for (int i = 0; i < p.num_outputs; ++i) o << " i" << i << "=" << num(p.current_a[i], "%.3f");
   } else if (lowlevel::event_stop_t s; ch == "LL_EVENT_STOP" && decode(rb, s)) {
     o << " module=" << s.module << " stop=" << int(s.stop) << " source=" << int(s.source)
-      << " age_us=" << (utime() - s.utime);
+      << " age_us=" << (utime() - s.utime) << " rx_us=" << utime();
   } else {
     o << " bytes=" << rb->data_size;
   }

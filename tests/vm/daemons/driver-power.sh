@@ -1,0 +1,95 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+# driver_power on the simulated BR-PSC1 (full-duplex link /dev/ttyTSU2):
+# LL_DATA_POWER at 1 Hz with the status and currents the simulator was set
+# to, LL_CMD_POWER switching an output (SET_PWR_STATUS seen by the board),
+# the board's PAUSE events as LL_EVENT_STOP (latency from the simulator
+# command), a POWER event published, the power-off command (a marker file,
+# never systemctl), PAUSE of the module, SIGTERM exit 0.
+. "$(dirname "$0")/lib.sh"
+
+daemons_rs485_up "$DRIVER_POWER"
+tap_plan 12
+
+MARK=$SCR/poweroff.marker
+cat >"$SCR/power.yaml" <<EOC
+module: {name: driver_power, print_severity: notice, send_severity: notice}
+driver_power:
+  bus: {device: /dev/ttyTSU2, timeout_ms: $TIMEOUT_MS, retries: 1}
+  address: 0x01
+  rate_hz: 1
+  poweroff_command: [touch, $MARK]
+  reboot_command: ["false"]
+EOC
+sim set psc1@0x01 status 0x0f >/dev/null
+sim set psc1@0x01 current all none >/dev/null
+sim set psc1@0x01 current 0 1.25 >/dev/null
+sim set psc1@0x01 current 1 0.5 >/dev/null
+
+bg "$DRIVER_POWER" --config "$SCR/power.yaml" 2>"$SCR/power.err"
+P=$LAST_BG
+sleep 2
+
+listen 4.2 LL_DATA_POWER
+n=$(count LL_DATA_POWER)
+p=$(last LL_DATA_POWER)
+tap_diag "in 4.2 s: LL_DATA_POWER $n (1 Hz); $p"
+tap_ok "LL_DATA_POWER at 1 Hz (3..6 in 4.2 s)" test "$n" -ge 3 -a "$n" -le 6
+tap_is "status 0x0f: outputs 0..3 on, not paused" "$(field "$p" module) $(field "$p" outputs) $(field "$p" mask) $(field "$p" paused)" "driver_power 8 15 0"
+tap_is "currents as set: 1.25 A, 0.5 A, no sensor -1" "$(field "$p" i0) $(field "$p" i1) $(field "$p" i2)" "1.250 0.500 -1.000"
+
+# LL_CMD_POWER: output 5 on, output 1 off.
+"$PROBE" listen 3 LL_DATA_POWER >"$SCR/cmd.out" &
+L=$!
+sleep 0.8
+"$PROBE" power output 5 on
+"$PROBE" power output 1 off
+wait "$L"
+tap_is "the board's status after the commands: 0x2d" "$(sim show psc1@0x01 | grep -o 'status=0x[0-9a-f]*')" "status=0x2d"
+tap_is "LL_DATA_POWER shows it (mask 45)" "$(field "$(grep '^LL_DATA_POWER ' "$SCR/cmd.out" | tail -1)" mask)" 45
+
+# PAUSE pressed and released on the board.
+"$PROBE" listen 4 LL_EVENT_STOP LL_DATA_POWER >"$SCR/stop.out" &
+L=$!
+sleep 1
+t0=$(( $(date +%s%N) / 1000 ))
+sim event psc1@0x01 pause 1 1 >/dev/null
+sleep 1
+sim event psc1@0x01 pause 0 0 >/dev/null
+wait "$L"
+s1=$(grep '^LL_EVENT_STOP ' "$SCR/stop.out" | head -1)
+s2=$(grep '^LL_EVENT_STOP ' "$SCR/stop.out" | sed -n 2p)
+tap_diag "$s1"
+tap_diag "$s2"
+tap_is "PAUSE engaged then released: two LL_EVENT_STOP (stop 1, 0; source PSC1)" \
+	"$(field "$s1" stop) $(field "$s1" source) $(field "$s2" stop) $(field "$s2" source)" "1 0 0 0"
+lat=$(( ($(field "$s1" rx_us) - t0) / 1000 ))
+tap_diag "LL_EVENT_STOP $lat ms after the simulator command was started (includes starting the rs485-sim client under TCG); publish-to-receive $(field "$s1" age_us) us"
+tap_ok "LL_EVENT_STOP within 500 ms of the simulator command (upper bound under TCG)" test "$lat" -ge 0 -a "$lat" -lt 500
+tap_ok "LL_DATA_POWER reported paused=1 in between" grep -q '^LL_DATA_POWER .* paused=1' "$SCR/stop.out"
+
+# A POWER event (the board's power sequence) is published at once.
+sim set psc1@0x01 status 0x81 >/dev/null
+"$PROBE" listen 0.9 LL_DATA_POWER >"$SCR/pev.out" &
+L=$!
+sleep 0.2
+sim event psc1@0x01 power >/dev/null
+wait "$L"
+tap_ok "POWER event: LL_DATA_POWER with the new status 0x81 within 0.7 s" grep -q '^LL_DATA_POWER .* mask=129 ' "$SCR/pev.out"
+
+# Power-off runs the configured command (here: touch a marker).
+"$PROBE" power poweroff
+for _i in $(seq 30); do [ -e "$MARK" ] && break; sleep 0.1; done
+tap_ok "LL_CMD_POWER POWEROFF ran the configured command" test -e "$MARK"
+
+# PAUSE of the module: no LL_DATA_POWER for 2.5 s.
+"$LCMCTL" state driver_power PAUSE
+sleep 0.5
+listen 2.5 LL_DATA_POWER
+tap_is "module PAUSE: no LL_DATA_POWER" "$(count LL_DATA_POWER)" 0
+
+kill -TERM "$P"
+wait_exit "$P" 5
+tap_is "SIGTERM: exit 0" "$?" 0
+BG_PIDS=
+tap_finish
