@@ -96,7 +96,8 @@ PowerDriver::PowerDriver(module::Module& m, PowerConfig cfg, rs485::Transport& l
       call_(cfg_.timeout, cfg_.retries),
       psc_(link, cfg_.address),
       health_(m.errors(), "psc1", cfg_.address) {
-  cmd_sub_ = m_.lcm().subscribe(std::string(msgs::kCmdPower.name), &PowerDriver::on_command, this);
+  cmd_sub_.emplace(m_.lcm(), std::string(msgs::kCmdPower.name),
+                   [this](const lowlevel::cmd_power_t& c) { on_command(c); });
   pause_sub_ = psc_.on_pause([this](const rs485::PauseEvent& e) { on_pause_event(e); });
   power_sub_ = psc_.on_power([this](const rs485::PowerEvent& e) {
     m_.post([this, e] {
@@ -110,7 +111,7 @@ PowerDriver::PowerDriver(module::Module& m, PowerConfig cfg, rs485::Transport& l
 PowerDriver::~PowerDriver() {
   pause_sub_.reset();
   power_sub_.reset();
-  if (cmd_sub_) m_.lcm().unsubscribe(cmd_sub_);
+  cmd_sub_.reset();
 }
 
 void PowerDriver::on_pause_event(const rs485::PauseEvent& e) {
@@ -156,7 +157,8 @@ void PowerDriver::poll() {
   publish_status();
 }
 
-void PowerDriver::on_command(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::cmd_power_t* c) {
+void PowerDriver::on_command(const lowlevel::cmd_power_t& cmd) {
+  const auto* c = &cmd;
   if (m_.state() != module::State::Run) {
     m_.errors().report(Severity::Warning, ErrorType::Unknown, kErrBadCommand,
                        "LL_CMD_POWER from " + c->module + " ignored: module is in " +

@@ -7,6 +7,9 @@
 
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
+#include <memory>
+
+#include "advee/module/subscription.hpp"
 #include <mutex>
 
 #include "advee/driver_power/power_driver.hpp"
@@ -34,13 +37,12 @@ struct Rx {
   std::vector<lowlevel::data_power_t> power;
   std::vector<lowlevel::event_stop_t> stops;
   std::vector<common::error_t> errors;
-  void p(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::data_power_t* m) { power.push_back(*m); }
-  void s(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::event_stop_t* m) { stops.push_back(*m); }
-  void e(const lcm::ReceiveBuffer*, const std::string&, const common::error_t* m) { errors.push_back(*m); }
+  // module::Subscription: LCM's member-function subscriptions trip UBSan.
+  std::vector<std::shared_ptr<void>> subs;
   void subscribe(lcm::LCM& l) {
-    l.subscribe("LL_DATA_POWER", &Rx::p, this);
-    l.subscribe("LL_EVENT_STOP", &Rx::s, this);
-    l.subscribe("CM_DATA_ERROR", &Rx::e, this);
+    subs.push_back(std::make_shared<module::Subscription<lowlevel::data_power_t>>(l, "LL_DATA_POWER", [this](const lowlevel::data_power_t& m) { power.push_back(m); }));
+    subs.push_back(std::make_shared<module::Subscription<lowlevel::event_stop_t>>(l, "LL_EVENT_STOP", [this](const lowlevel::event_stop_t& m) { stops.push_back(m); }));
+    subs.push_back(std::make_shared<module::Subscription<common::error_t>>(l, "CM_DATA_ERROR", [this](const common::error_t& m) { errors.push_back(m); }));
   }
   int errors_numbered(int n) const {
     int c = 0;

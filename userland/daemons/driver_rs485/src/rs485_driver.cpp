@@ -7,7 +7,6 @@
 #include "advee/driver_rs485/messages.hpp"
 #include "advee/module/time.hpp"
 #include "advee/msgs/channels.hpp"
-#include "lowlevel/data_active_beacons_t.hpp"
 
 namespace advee::driver_rs485 {
 
@@ -38,8 +37,8 @@ Rs485Driver::Rs485Driver(module::Module& m, Rs485Config cfg, rs485::Transport& b
       beacon_ids_ = cfg_.sbs1->beacon_ids;
       ids_pending_ = true;
     }
-    beacons_sub_ = m_.lcm().subscribe(std::string(msgs::kDataActiveBeacons.name),
-                                      &Rs485Driver::on_active_beacons, this);
+    beacons_sub_.emplace(m_.lcm(), std::string(msgs::kDataActiveBeacons.name),
+                         [this](const lowlevel::data_active_beacons_t& msg) { on_active_beacons(msg); });
   }
   m_.on_state_change([this](module::State, module::State to) {
     if (to == module::State::Run) last_counts_.reset();  // the pause is no odometry interval
@@ -47,12 +46,8 @@ Rs485Driver::Rs485Driver(module::Module& m, Rs485Config cfg, rs485::Transport& b
   m_.every(period, [this] { poll(); });
 }
 
-Rs485Driver::~Rs485Driver() {
-  if (beacons_sub_) m_.lcm().unsubscribe(beacons_sub_);
-}
-
-void Rs485Driver::on_active_beacons(const lcm::ReceiveBuffer*, const std::string&,
-                                    const lowlevel::data_active_beacons_t* msg) {
+void Rs485Driver::on_active_beacons(const lowlevel::data_active_beacons_t& m) {
+  const auto* msg = &m;
   std::vector<std::uint8_t> ids;
   for (auto id : msg->id) {
     if (id < 0 || id > 255) {

@@ -7,6 +7,9 @@
 
 #include <atomic>
 #include <lcm/lcm-cpp.hpp>
+#include <memory>
+
+#include "advee/module/subscription.hpp"
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -35,15 +38,13 @@ struct Rx {
   std::vector<lowlevel::data_odo_t> odo;
   std::vector<lowlevel::data_beacons_t> beacons;
   std::vector<common::error_t> errors;
-  void s(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::data_srfs_t* m) { srfs.push_back(*m); }
-  void o(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::data_odo_t* m) { odo.push_back(*m); }
-  void b(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::data_beacons_t* m) { beacons.push_back(*m); }
-  void e(const lcm::ReceiveBuffer*, const std::string&, const common::error_t* m) { errors.push_back(*m); }
+  // module::Subscription: LCM's member-function subscriptions trip UBSan.
+  std::vector<std::shared_ptr<void>> subs;
   void subscribe(lcm::LCM& l) {
-    l.subscribe("LL_DATA_SRFS", &Rx::s, this);
-    l.subscribe("LL_DATA_ODO", &Rx::o, this);
-    l.subscribe("LL_DATA_BEACONS", &Rx::b, this);
-    l.subscribe("CM_DATA_ERROR", &Rx::e, this);
+    subs.push_back(std::make_shared<module::Subscription<lowlevel::data_srfs_t>>(l, "LL_DATA_SRFS", [this](const lowlevel::data_srfs_t& m) { srfs.push_back(m); }));
+    subs.push_back(std::make_shared<module::Subscription<lowlevel::data_odo_t>>(l, "LL_DATA_ODO", [this](const lowlevel::data_odo_t& m) { odo.push_back(m); }));
+    subs.push_back(std::make_shared<module::Subscription<lowlevel::data_beacons_t>>(l, "LL_DATA_BEACONS", [this](const lowlevel::data_beacons_t& m) { beacons.push_back(m); }));
+    subs.push_back(std::make_shared<module::Subscription<common::error_t>>(l, "CM_DATA_ERROR", [this](const common::error_t& m) { errors.push_back(m); }));
   }
   int errors_numbered(int n) const {
     int c = 0;

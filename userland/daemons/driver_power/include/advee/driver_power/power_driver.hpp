@@ -17,15 +17,10 @@
 #include "advee/driver_rs485/node_health.hpp"
 #include "advee/module/config.hpp"
 #include "advee/module/module.hpp"
+#include "advee/module/subscription.hpp"
 #include "advee/rs485/devices/psc1.hpp"
-
-namespace lcm {
-class Subscription;
-}
-namespace lowlevel {
-class cmd_power_t;
-class data_power_t;
-}  // namespace lowlevel
+#include "lowlevel/cmd_power_t.hpp"
+#include "lowlevel/data_power_t.hpp"
 
 namespace advee::driver_power {
 
@@ -72,7 +67,7 @@ class PowerDriver {
   void poll();  // status + currents -> LL_DATA_POWER (in RUN)
 
  private:
-  void on_command(const lcm::ReceiveBuffer*, const std::string&, const lowlevel::cmd_power_t* c);
+  void on_command(const lowlevel::cmd_power_t& c);
   void publish_status();
   void on_pause_event(const rs485::PauseEvent& e);  // event thread
 
@@ -85,7 +80,7 @@ class PowerDriver {
   std::optional<std::uint8_t> status_;  // last known output status
   std::optional<rs485::Psc1Currents> currents_;
   std::atomic<bool> paused_{false};
-  lcm::Subscription* cmd_sub_ = nullptr;
+  std::optional<module::Subscription<lowlevel::cmd_power_t>> cmd_sub_;
   rs485::Subscription pause_sub_, power_sub_;  // last: they go first
 };
 

@@ -17,14 +17,9 @@
 #include "advee/module/module.hpp"
 #include "advee/rs485/devices/sbs1.hpp"
 #include "advee/rs485/devices/sd1.hpp"
+#include "advee/module/subscription.hpp"
 #include "advee/rs485/devices/so1.hpp"
-
-namespace lcm {
-class Subscription;
-}
-namespace lowlevel {
-class data_active_beacons_t;
-}
+#include "lowlevel/data_active_beacons_t.hpp"
 
 namespace advee::driver_rs485 {
 
@@ -35,7 +30,6 @@ class Rs485Driver {
  public:
   // Registers the periodic poll and the LL_DATA_ACTIVE_BEACONS handler on `m`.
   Rs485Driver(module::Module& m, Rs485Config cfg, rs485::Transport& bus, NodeStatusFn node_status = {});
-  ~Rs485Driver();
   Rs485Driver(const Rs485Driver&) = delete;
   Rs485Driver& operator=(const Rs485Driver&) = delete;
 
@@ -50,8 +44,7 @@ class Rs485Driver {
   void poll_sd1s();
   void poll_so1();
   void poll_sbs1();
-  void on_active_beacons(const lcm::ReceiveBuffer*, const std::string&,
-                         const lowlevel::data_active_beacons_t* msg);
+  void on_active_beacons(const lowlevel::data_active_beacons_t& msg);
 
   module::Module& m_;
   Rs485Config cfg_;
@@ -72,7 +65,7 @@ class Rs485Driver {
   std::optional<std::vector<std::uint8_t>> beacon_ids_;  // nullopt: none known yet
   bool ids_pending_ = false;
   std::chrono::steady_clock::time_point ids_sent_at_;
-  lcm::Subscription* beacons_sub_ = nullptr;
+  std::optional<module::Subscription<lowlevel::data_active_beacons_t>> beacons_sub_;
 };
 
 }  // namespace advee::driver_rs485
