@@ -5,7 +5,9 @@
 // debugfs), optionally printing pose, ranges and bearings once a second.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <memory>
