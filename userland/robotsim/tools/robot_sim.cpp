@@ -4,6 +4,9 @@
 // values to the device simulators (rs485-sim control socket, MAX6615
 // debugfs), optionally printing pose, ranges and bearings once a second.
 #include <CLI/CLI.hpp>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -17,6 +20,7 @@
 #include "advee/robotsim/robot.hpp"
 #include "advee/robotsim/scripted_path.hpp"
 #include "advee/robotsim/sinks.hpp"
+#include "advee/robotsim/stream_drive.hpp"
 #include "advee/robotsim/world.hpp"
 #include "advee/rs485sim/control_client.hpp"
 
@@ -26,6 +30,17 @@ namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
+
+// The drive input: "-" is stdin; a FIFO is opened read-write so that it
+// never reads end-of-file while no writer has it open.
+advee::UniqueFd open_drive_input(const std::string& path) {
+  if (path == "-") return advee::UniqueFd(fcntl(0, F_DUPFD_CLOEXEC, 3));
+  struct stat st {};
+  const bool fifo = stat(path.c_str(), &st) == 0 && S_ISFIFO(st.st_mode);
+  advee::UniqueFd fd(open(path.c_str(), (fifo ? O_RDWR : O_RDONLY) | O_NONBLOCK | O_CLOEXEC));
+  if (!fd) throw std::system_error(errno, std::generic_category(), "drive input " + path);
+  return fd;
+}
 
 void print_frame(const SensorFrame& f, const Pose& odo) {
   std::printf("t=%.1f pose x=%.3f y=%.3f heading=%.1f odo x=%.3f y=%.3f heading=%.1f v=%.2f steer=%.1f ticks=%lld,%lld\n",
@@ -63,22 +78,26 @@ int main(int argc, char** argv) {
       "  robot-sim --rs485-control /run/rs485-sim.sock --max6615 /sys/kernel/debug/ts7800-sim/max6615\n\n"
       "EXIT STATUS:\n"
       "  0 done (--duration reached, or SIGINT/SIGTERM)\n"
-      "  1 a simulator refused a value or could not be reached\n"
+      "  1 a simulator refused a value or could not be reached, or a bad --drive-input line\n"
       "  2 bad option or unusable map, robot or path file (the message names file, line and field)\n\n"
-      "LIMITS: the drive commands come from --path; the simulated EPOS/IclA (canopen-sim-drive) offer no\n"
-      "hook to read their speed and steering yet.");
+          "DRIVE INPUT (--drive-input): text lines 'SPEED_MPS STEERING_DEG' (steering counter-clockwise,\n"
+      "'#' comments); the last line holds, the robot stands still until the first. Without it the\n"
+      "scripted --path drives: the simulated EPOS/IclA (canopen-sim-drive) offer no hook to read\n"
+      "their speed and steering yet.");
   const std::string etc = ADVEE_ROBOTSIM_SYSCONFDIR "/";
   std::string map_file = etc + "room.yaml", robot_file = etc + "robot.yaml", path_file = etc + "square-path.yaml";
   double rate = 100, publish_rate = 10, duration = 0;
   unsigned seed = 1;
   bool print = false, fast = false, check = false;
-  std::string rs485_control, max6615_dir;
+  std::string rs485_control, max6615_dir, drive_input;
   Rs485Devices devices;
   app.add_option("-m,--map", map_file, "map file: walls, obstacles, beacons")->capture_default_str();
   app.add_option("-r,--robot", robot_file, "robot description: chassis, start pose, sensors, thermal model")
       ->capture_default_str();
   app.add_option("-p,--path", path_file, "scripted drive: list of {speed_mps, steering_deg, duration_s}")
       ->capture_default_str();
+  app.add_option("--drive-input", drive_input,
+                 "read the drive commands from this file, FIFO or '-' (stdin) instead of --path");
   app.add_option("--rate", rate, "simulation steps per second")->check(CLI::Range(1.0, 10000.0))->capture_default_str();
   app.add_option("--publish-rate", publish_rate, "sensor frames per second sent to the simulators")
       ->check(CLI::Range(0.1, 1000.0))->capture_default_str();
@@ -110,7 +129,7 @@ int main(int argc, char** argv) {
   try {
     world = load_world(map_file);
     desc = load_robot(robot_file);
-    path = load_path(path_file);
+    if (drive_input.empty()) path = load_path(path_file);
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "robot-sim: %s\n", e.what());
     return 2;
@@ -134,7 +153,16 @@ int main(int argc, char** argv) {
       advee::rs485sim::control_ok(rs485_control, cmd);
     }));
   if (!max6615_dir.empty()) sinks.push_back(std::make_unique<Max6615DebugfsSink>(max6615_dir));
-  ScriptedDrive drive(path);
+  std::unique_ptr<DriveSource> drive;
+  try {
+    if (drive_input.empty())
+      drive = std::make_unique<ScriptedDrive>(path);
+    else
+      drive = std::make_unique<StreamDrive>(open_drive_input(drive_input));
+  } catch (const std::system_error& e) {
+    std::fprintf(stderr, "robot-sim: %s\n", e.what());
+    return 2;
+  }
   TickOdometry odo(desc.chassis, robot.pose());
 
   struct sigaction sa {};
@@ -149,7 +177,7 @@ int main(int argc, char** argv) {
   auto next = std::chrono::steady_clock::now();
   try {
     for (long i = 1; !g_stop && (total < 0 || i <= total); ++i) {
-      const DriveCommand cmd = drive.command(robot.time());
+      const DriveCommand cmd = drive->command(robot.time());
       robot.step(cmd.speed_mps, cmd.steering_rad, dt);
       const bool publish = i % steps_per_publish == 0, show = print && i % steps_per_print == 0;
       if (publish || show) {
