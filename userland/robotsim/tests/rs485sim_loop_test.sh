@@ -21,7 +21,7 @@ buses:
   - {name: a, wire: $dir/wire-a, devices: [{type: sd1, address: 0x10}, {type: sd1, address: 0x11}, {type: so1, address: 0x20}]}
   - {name: b, wire: $dir/wire-b, devices: [{type: sbs1, address: 0x30}]}
 EOT
-"$rs485_sim" -c "$dir/sim.yaml" 2> "$dir/sim.log" &
+"$rs485_sim" -c "$dir/sim.yaml" > "$dir/sim.log" 2>&1 &
 sim_pid=$!
 for _ in $(seq 50); do [ -S "$dir/ctl.sock" ] && break; sleep 0.1; done
 [ -S "$dir/ctl.sock" ] || fail "rs485-sim did not start: $(cat "$dir/sim.log")"
