@@ -53,9 +53,26 @@ stage=$out/stage-$debarch
 rm -rf "$stage"
 "$TOP/scripts/install.sh" --destdir "$stage" --arch "$variant" --modules none
 mkdir -p "$stage/DEBIAN"
+# Like dh_strip: the package carries no debug information.
+strip_tool=$(cross_prefix "$variant")strip
+find "$stage" -type f -exec sh -c 'head -c 4 "$1" | grep -q ELF' _ {} \; -print0 |
+	xargs -0 -r "$strip_tool" --strip-unneeded --remove-section=.comment --remove-section=.note 2>/dev/null || true
 deps="systemd, udev, util-linux, lm-sensors"
-for so in $(find "$stage" -type f -exec sh -c 'head -c 4 "$1" | grep -q ELF' _ {} \; -print0 |
-		xargs -0 -r readelf -d 2>/dev/null | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | sort -u); do
+sonames=$(find "$stage" -type f -exec sh -c 'head -c 4 "$1" | grep -q ELF' _ {} \; -print0 |
+	xargs -0 -r readelf -d 2>/dev/null | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | sort -u)
+# Native: one dpkg -S for every soname not in the table (it reads the whole
+# files database each time, which is slow on the VM's 9p root).
+if [ "$variant" = native ]; then
+	ask=()
+	for so in $sonames; do [ -n "${soname_pkg[$so]:-}" ] || ask+=("*/$so"); done
+	if [ "${#ask[@]}" -gt 0 ]; then
+		while IFS= read -r line; do
+			pkg=${line%%:*} path=${line#*: }
+			soname_pkg[${path##*/}]=$pkg
+		done < <(dpkg -S "${ask[@]}" 2>/dev/null)
+	fi
+fi
+for so in $sonames; do
 	p=$(soname_package "$so")
 	[ -n "$p" ] || die "no package found for $so"
 	case ", $deps, " in *", $p, "*) ;; *) deps="$deps, $p" ;; esac
