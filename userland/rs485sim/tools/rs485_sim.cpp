@@ -37,7 +37,7 @@ constexpr const char* kDescription =
     "bearings) and BR-PSC1 (8 power channels, currents, PAUSE/POWER events) would,\n"
     "on the wires of the simulated TS-7800 FPGA (/dev/ts7800-sim/uartN is the far\n"
     "end of /dev/ttyTSUn; modprobe ts_uart ts7800_sim first). One process serves\n"
-    "every bus of the configuration file.";
+    "every bus of the configuration file.\n";
 
 constexpr const char* kFooter =
     "CONFIGURATION (YAML, see docs/rs485-sim.md):\n"
@@ -264,12 +264,13 @@ int main(int argc, char** argv) {
   std::string config, control, send;
   bool verbose = false, check = false;
   std::uint32_t seed = 0;
-  app.add_option("-c,--config", config, "YAML configuration file (buses, devices, faults)");
-  app.add_option("--control", control, "control socket path (overrides the file's 'control')");
-  app.add_option("--seed", seed, "random seed (overrides the file's 'seed'); same seed, same faults");
+  app.add_option("-c,--config", config, "YAML configuration file (buses, devices, faults)")->type_name("FILE");
+  app.add_option("--control", control, "control socket path (overrides the file's 'control')")->type_name("PATH");
+  app.add_option("--seed", seed, "random seed (overrides the file's 'seed'); same seed, same faults")->type_name("N");
   app.add_flag("-v,--verbose", verbose, "log every frame and control command on stderr ('log on|off' toggles)");
   app.add_flag("--check", check, "load the configuration, report errors, exit");
-  app.add_option("--send", send, "client mode: send one control command to --control and print the reply");
+  app.add_option("--send", send, "client mode: send one control command to --control and print the reply")
+      ->type_name("COMMAND");
   CLI11_PARSE(app, argc, argv);
 
   if (!send.empty()) {
