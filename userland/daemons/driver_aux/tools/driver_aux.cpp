@@ -2,31 +2,27 @@
 // driver_aux [--config FILE]: the auxiliary-devices module (docs/modules.md).
 #include <iostream>
 #include <string>
+#include <variant>
 
+#include "advee/module/command_line.hpp"
 #include "advee/driver_aux/aux_driver.hpp"
 
 using namespace advee;
 
 int main(int argc, char** argv) {
   return module::guarded_main("driver_aux", [&] {
-    std::string config;
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if ((a == "-c" || a == "--config") && i + 1 < argc) {
-        config = argv[++i];
-      } else if (a == "-h" || a == "--help") {
-        std::cout << "usage: driver_aux [--config FILE]\n"
-                     "Publishes the MAX6615 temperatures (LL_DATA_TEMPERATURE) and fans\n"
-                     "(LL_DATA_FANS) read from its hwmon device; see docs/modules.md.\n"
-                     "Without --config: /etc/advee/driver_aux.yaml if present, else defaults.\n";
-        return 0;
-      } else {
-        std::cerr << "driver_aux: unknown argument " << a << " (see --help)\n";
-        return module::exit_code(module::ExitKind::Other, 1);
-      }
-    }
-    if (config.empty() && std::filesystem::exists("/etc/advee/driver_aux.yaml"))
-      config = "/etc/advee/driver_aux.yaml";
+    module::CommandLineSpec spec;
+    spec.name = "driver_aux";
+    spec.description = "Publishes the MAX6615 temperatures (LL_DATA_TEMPERATURE) and fan speeds\n"
+                       "(LL_DATA_FANS) read from its hwmon device, watches the fan-fail line;\n"
+                       "see docs/modules.md.";
+    spec.default_config = "/etc/advee/driver_aux.yaml";
+    spec.exit_details =
+        "  0x21       no MAX6615 hwmon device\n  0x22       the device went away\n"
+        "  0x23       the fan-fail line cannot be requested\n  0x24       a configured channel is missing\n";
+    const auto args = module::parse_command_line(spec, argc, argv);
+    if (const int* status = std::get_if<int>(&args)) return *status;
+    const std::string& config = std::get<std::string>(args);
     auto cfg = config.empty() ? driver_aux::parse_aux_config(module::ConfigNode::parse("{}", "defaults"))
                               : driver_aux::parse_aux_config(module::ConfigNode::load_file(config));
     module::Module m(cfg.module);

@@ -4,7 +4,9 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <variant>
 
+#include "advee/module/command_line.hpp"
 #include "advee/driver_power/power_driver.hpp"
 #include "advee/rs485/bus.hpp"
 
@@ -12,24 +14,15 @@ using namespace advee;
 
 int main(int argc, char** argv) {
   return module::guarded_main("driver_power", [&] {
-    std::string config;
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if ((a == "-c" || a == "--config") && i + 1 < argc) {
-        config = argv[++i];
-      } else if (a == "-h" || a == "--help") {
-        std::cout << "usage: driver_power [--config FILE]\n"
-                     "Publishes the BR-PSC1 output status and currents (LL_DATA_POWER), forwards\n"
-                     "its PAUSE events (LL_EVENT_STOP), obeys LL_CMD_POWER; see docs/daemons.md.\n"
-                     "Without --config: /etc/advee/driver_power.yaml if present, else defaults.\n";
-        return 0;
-      } else {
-        std::cerr << "driver_power: unknown argument " << a << " (see --help)\n";
-        return module::exit_code(module::ExitKind::Other, 1);
-      }
-    }
-    if (config.empty() && std::filesystem::exists("/etc/advee/driver_power.yaml"))
-      config = "/etc/advee/driver_power.yaml";
+    module::CommandLineSpec spec;
+    spec.name = "driver_power";
+    spec.description = "Publishes the BR-PSC1 output status and currents (LL_DATA_POWER), forwards\n"
+                       "its PAUSE events (LL_EVENT_STOP), obeys LL_CMD_POWER; see docs/daemons.md.";
+    spec.default_config = "/etc/advee/driver_power.yaml";
+    spec.exit_details = "  0x21       the bus cannot be opened or configured\n";
+    const auto args = module::parse_command_line(spec, argc, argv);
+    if (const int* status = std::get_if<int>(&args)) return *status;
+    const std::string& config = std::get<std::string>(args);
     const auto cfg = config.empty()
                          ? driver_power::parse_power_config(module::ConfigNode::parse("{}", "defaults"))
                          : driver_power::parse_power_config(module::ConfigNode::load_file(config));

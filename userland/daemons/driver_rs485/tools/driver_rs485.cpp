@@ -5,7 +5,9 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <variant>
 
+#include "advee/module/command_line.hpp"
 #include "advee/driver_rs485/rs485_driver.hpp"
 #include "advee/rs485/bus.hpp"
 
@@ -13,27 +15,17 @@ using namespace advee;
 
 int main(int argc, char** argv) {
   return module::guarded_main("driver_rs485", [&] {
-    std::string config;
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if ((a == "-c" || a == "--config") && i + 1 < argc) {
-        config = argv[++i];
-      } else if (a == "-h" || a == "--help") {
-        std::cout << "usage: driver_rs485 --config FILE\n"
-                     "Polls the BR-SD1/SO1/SBS1 boards of one RS-485 bus and publishes\n"
-                     "LL_DATA_SRFS, LL_DATA_ODO and LL_DATA_BEACONS (beacon ids from\n"
-                     "LL_DATA_ACTIVE_BEACONS); see docs/daemons.md. Examples:\n"
-                     "/etc/advee/driver_rs485a.yaml (bus A), /etc/advee/driver_rs485b.yaml (bus B).\n";
-        return 0;
-      } else {
-        std::cerr << "driver_rs485: unknown argument " << a << " (see --help)\n";
-        return module::exit_code(module::ExitKind::Other, 1);
-      }
-    }
-    if (config.empty()) {
-      std::cerr << "driver_rs485: --config FILE is required (one file per bus)\n";
-      return module::exit_code(module::ExitKind::Other, 1);
-    }
+    module::CommandLineSpec spec;
+    spec.name = "driver_rs485";
+    spec.description = "Polls the BR-SD1/SO1/SBS1 boards of one RS-485 bus and publishes\n"
+                       "LL_DATA_SRFS, LL_DATA_ODO and LL_DATA_BEACONS (beacon ids from\n"
+                       "LL_DATA_ACTIVE_BEACONS); see docs/daemons.md. One instance per bus:\n"
+                       "/etc/advee/driver_rs485a.yaml (bus A), /etc/advee/driver_rs485b.yaml (bus B).";
+    spec.config_required = true;
+    spec.exit_details = "  0x21       the bus cannot be opened or configured\n";
+    const auto args = module::parse_command_line(spec, argc, argv);
+    if (const int* status = std::get_if<int>(&args)) return *status;
+    const std::string& config = std::get<std::string>(args);
     const auto cfg = driver_rs485::parse_rs485_config(module::ConfigNode::load_file(config));
     module::Module m(cfg.module);
     std::unique_ptr<rs485::Bus> bus;

@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cstdint>
 
-#include "advee/module/unique_fd.hpp"
+#include "advee/unique_fd.hpp"
 
 namespace advee::module {
 

@@ -13,7 +13,7 @@
 #include <optional>
 #include <vector>
 
-#include "advee/module/unique_fd.hpp"
+#include "advee/unique_fd.hpp"
 
 namespace advee::module {
 

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: GPL-2.0
+#include "advee/module/command_line.hpp"
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+
+#include "advee/module/exit_code.hpp"
+
+namespace advee::module {
+
+std::variant<std::string, int> parse_command_line(const CommandLineSpec& spec, int argc,
+                                                  char** argv) {
+  CLI::App app(spec.description, spec.name);
+  std::string config;
+  auto* opt = app.add_option("-c,--config", config, "YAML configuration file");
+  if (spec.config_required)
+    opt->required();
+  else if (!spec.default_config.empty())
+    opt->description("YAML configuration file (default: " + spec.default_config +
+                     " if it exists, else built-in defaults)");
+  std::string footer =
+      "SIGNALS\n"
+      "  SIGTERM, SIGINT: leave through the TERMINATE state and exit 0.\n"
+      "  The state follows CM_CMD_STATE addressed to this module (docs/modules.md).\n\n"
+      "EXIT STATUS\n"
+      "  0          terminated on request\n"
+      "  0x10+N     resource error N (memory, files, LCM)\n"
+      "  0x20+N     device error N\n"
+      "  0x40+N     other error N; 0x41 = bad command line or configuration\n";
+  if (!spec.exit_details.empty()) footer += spec.exit_details;
+  app.footer(footer);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);  // prints the help on stdout, 0
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);  // prints the error on stderr
+    return exit_code(ExitKind::Other, 1);
+  }
+  if (config.empty() && !spec.default_config.empty() &&
+      std::filesystem::exists(spec.default_config))
+    config = spec.default_config;
+  return config;
+}
+
+}  // namespace advee::module
