@@ -27,10 +27,18 @@ armhf|armel)
 esac
 say "userland ($variant) in $dir"
 log=$dir.log
+# A toolchain file is read once, when the cache is created (its *_INIT
+# flags then stay in CMakeCache.txt): start the cache again when the
+# toolchain or the configure arguments changed since.
+stamp=$(printf '%s\n' "${args[@]}" | cat - "$TOP"/userland/cmake/*.cmake | sha256sum | cut -c1-16)
+if [ -f "$dir/CMakeCache.txt" ] && [ "$(cat "$dir/.advee-configure" 2>/dev/null)" != "$stamp" ]; then
+	rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"
+fi
 if ! { cmake -B "$dir" "${args[@]}" && ninja -C "$dir"; } >"$log" 2>&1; then
 	tail -40 "$log" >&2
 	die "userland build ($variant) failed; full log: $log"
 fi
+echo "$stamp" >"$dir/.advee-configure"
 
 # Cross builds: every ELF file must be for the target's ABI (file(1) and the
 # ARM build attributes): armel = ARMv5TE soft float, ld-linux.so.3 (the
