@@ -8,7 +8,7 @@
 
 #include "advee/module/command_line.hpp"
 #include "advee/driver_power/power_driver.hpp"
-#include "advee/rs485/bus.hpp"
+#include "advee/driver_rs485/run_on_bus.hpp"
 
 using namespace advee;
 
@@ -27,32 +27,10 @@ int main(int argc, char** argv) {
                          ? driver_power::parse_power_config(module::ConfigNode::parse("{}", "defaults"))
                          : driver_power::parse_power_config(module::ConfigNode::load_file(config));
     module::Module m(cfg.module);  // first: the bus's event thread inherits the blocked signals
-    std::unique_ptr<rs485::Bus> bus;
-    try {
-      rs485::BusOptions o;
-      o.config = rs485::BusConfig{cfg.baud, cfg.timeout, cfg.retries, 2};
-      bus = std::make_unique<rs485::Bus>(cfg.device, o);
-    } catch (const std::system_error& e) {
-      const module::ModuleExit ex(module::ExitKind::Device, driver_power::kExitNoBus,
-                                  "bus " + cfg.device + ": " + e.what());
-      m.errors().report(module::Severity::Error, module::ErrorType::Device, ex.code(), ex.what(), true);
-      return ex.code();
-    }
-    auto status = [b = bus.get()](std::uint8_t addr) -> std::optional<rs485::NodeStatus> {
-      try {
-        return b->node(addr);
-      } catch (const std::system_error&) {
-        return std::nullopt;
-      }
-    };
-    int code = 0;
-    try {
-      driver_power::PowerDriver driver(m, cfg, *bus, status);
-      code = m.run();
-    } catch (const module::ModuleExit& e) {
-      m.errors().report(module::Severity::Error, module::ErrorType::Device, e.code(), e.what(), true);
-      return e.code();
-    }
-    return code;
+    return driver_rs485::run_on_bus(
+        m, cfg.device, rs485::BusConfig{cfg.baud, cfg.timeout, cfg.retries, 2},
+        driver_power::kExitNoBus, [&](rs485::Bus& bus, driver_rs485::NodeStatusFn status) {
+          return std::make_unique<driver_power::PowerDriver>(m, cfg, bus, std::move(status));
+        });
   });
 }

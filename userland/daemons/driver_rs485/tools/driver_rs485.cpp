@@ -9,7 +9,7 @@
 
 #include "advee/module/command_line.hpp"
 #include "advee/driver_rs485/rs485_driver.hpp"
-#include "advee/rs485/bus.hpp"
+#include "advee/driver_rs485/run_on_bus.hpp"
 
 using namespace advee;
 
@@ -28,32 +28,10 @@ int main(int argc, char** argv) {
     const std::string& config = std::get<std::string>(args);
     const auto cfg = driver_rs485::parse_rs485_config(module::ConfigNode::load_file(config));
     module::Module m(cfg.module);
-    std::unique_ptr<rs485::Bus> bus;
-    try {
-      rs485::BusOptions o;
-      o.config = rs485::BusConfig{cfg.bus.baud, cfg.bus.timeout, cfg.bus.retries, 2};
-      bus = std::make_unique<rs485::Bus>(cfg.bus.device, o);
-    } catch (const std::system_error& e) {
-      const module::ModuleExit ex(module::ExitKind::Device, driver_rs485::kExitNoBus,
-                                  std::string("bus ") + cfg.bus.device + ": " + e.what());
-      m.errors().report(module::Severity::Error, module::ErrorType::Device, ex.code(), ex.what(), true);
-      return ex.code();
-    }
-    auto status = [b = bus.get()](std::uint8_t addr) -> std::optional<rs485::NodeStatus> {
-      try {
-        return b->node(addr);
-      } catch (const std::system_error&) {
-        return std::nullopt;
-      }
-    };
-    int code = 0;
-    try {
-      driver_rs485::Rs485Driver driver(m, cfg, *bus, status);
-      code = m.run();
-    } catch (const module::ModuleExit& e) {
-      m.errors().report(module::Severity::Error, module::ErrorType::Device, e.code(), e.what(), true);
-      return e.code();
-    }
-    return code;
+    return driver_rs485::run_on_bus(
+        m, cfg.bus.device, rs485::BusConfig{cfg.bus.baud, cfg.bus.timeout, cfg.bus.retries, 2},
+        driver_rs485::kExitNoBus, [&](rs485::Bus& bus, driver_rs485::NodeStatusFn status) {
+          return std::make_unique<driver_rs485::Rs485Driver>(m, cfg, bus, std::move(status));
+        });
   });
 }
