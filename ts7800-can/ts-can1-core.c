@@ -106,21 +106,6 @@ static void ts_can1_release(struct ts_can1_bus *bus, unsigned int port,
 		devm_release_mem_region(&bus->pdev->dev, bus->phys + port, size);
 }
 
-/* JP4/JP5 to PC/104 interrupt line; 0 if no line is jumpered. */
-static unsigned int ts_can1_jumper_line(u8 jumpers)
-{
-	switch (jumpers & (TS_CAN1_JP4 | TS_CAN1_JP5)) {
-	case TS_CAN1_JP4:
-		return 6;
-	case TS_CAN1_JP5:
-		return 7;
-	case TS_CAN1_JP4 | TS_CAN1_JP5:
-		return 5;
-	default:
-		return 0;
-	}
-}
-
 /* Linux interrupt of a PC/104 line: from the provider, else the board. */
 static int ts_can1_line_irq(struct ts_can1_bus *bus, unsigned int line)
 {

@@ -139,20 +139,6 @@ struct ts_can1_sim {
 
 static const u16 sim_windows[TS_CAN1_NR_WINDOWS] = TS_CAN1_WINDOW_BASES;
 
-static unsigned int sim_jumper_line(u8 jumpers)
-{
-	switch (jumpers & (TS_CAN1_JP4 | TS_CAN1_JP5)) {
-	case TS_CAN1_JP4:
-		return 6;
-	case TS_CAN1_JP5:
-		return 7;
-	case TS_CAN1_JP4 | TS_CAN1_JP5:
-		return 5;
-	default:
-		return 0;
-	}
-}
-
 /* ---- interrupt lines ---------------------------------------------------- */
 
 static void sim_irq_work(struct irq_work *work)
@@ -727,7 +713,7 @@ static int sim_probe(struct platform_device *pdev)
 	spin_lock_init(&sim->lock);
 	raw_spin_lock_init(&sim->irq_lock);
 	sim->irq_work = IRQ_WORK_INIT_HARD(sim_irq_work);
-	sim->line = sim_jumper_line(sim_jumpers);
+	sim->line = ts_can1_jumper_line(sim_jumpers);
 	sim_sja_reset(&sim->sja);
 
 	map = devm_regmap_init(dev, NULL, sim, &sim_io_regmap_config);

@@ -12,6 +12,7 @@
 #define _LINUX_TS_CAN1_H
 
 #include <linux/bits.h>
+#include <linux/types.h>
 
 /* Platform device the driver binds to (one per PC/104 bus). */
 #define TS_CAN1_DEV_NAME		"ts-can1"
@@ -48,6 +49,24 @@
 /* JUMPERS: JP4/JP5 select the PC/104 interrupt line. */
 #define TS_CAN1_JP4			BIT(4)
 #define TS_CAN1_JP5			BIT(5)
+
+/*
+ * The PC/104 interrupt line the jumpers select, 0 if none: one definition
+ * for the driver and the simulated card.
+ */
+static inline unsigned int ts_can1_jumper_line(u8 jumpers)
+{
+	switch (jumpers & (TS_CAN1_JP4 | TS_CAN1_JP5)) {
+	case TS_CAN1_JP4:
+		return 6;
+	case TS_CAN1_JP5:
+		return 7;
+	case TS_CAN1_JP4 | TS_CAN1_JP5:
+		return 5;
+	default:
+		return 0;
+	}
+}
 
 /* SJA1000 (PeliCAN) register window: 32 byte registers. */
 #define TS_CAN1_SJA1000_SIZE		32
