@@ -32,11 +32,13 @@ inline constexpr Channel kEventStop{"LL_EVENT_STOP", "lowlevel.event_stop_t", 0}
 inline constexpr Channel kDataTemperature{"LL_DATA_TEMPERATURE", "lowlevel.data_temperature_t",
                                           1.0};
 inline constexpr Channel kDataFans{"LL_DATA_FANS", "lowlevel.data_fans_t", 1.0};
+inline constexpr Channel kDataDrives{"LL_DATA_DRIVES", "lowlevel.data_drives_t", 4.0};
 
 inline constexpr std::array kAllChannels{
     kDataState, kCmdState,  kDataError,         kDataModules, kDataSrfs,
     kDataOdo,   kDataBeacons, kDataActiveBeacons, kCmdMotion,   kCmdHoming,
     kCmdPower,  kDataPower, kEventStop,         kDataTemperature, kDataFans,
+    kDataDrives,
 };
 
 }  // namespace advee::msgs
