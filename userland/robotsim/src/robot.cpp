@@ -50,9 +50,14 @@ void Robot::step(double speed, double steering, double dt) {
   const double w = yaw_rate(speed, steering, c.wheelbase_m);
   const Pose next = integrate_arc(pose_, speed, w, dt);
   const std::uint8_t contact = bumper_contact(next);
+  const bool powered = motor_powered();  // the PAUSE line as the step begins
   if (contact) {
     // The bumper stops the robot where it touched: no motion, no ticks.
     bumper_ = contact;
+    speed_ = 0;
+  } else if (!powered) {
+    // PAUSE cut the motor: it stands; the bumper is free again.
+    bumper_ = 0;
     speed_ = 0;
   } else {
     const auto d = front_wheel_distances(speed, w, c.wheelbase_m, c.track_m, dt);
@@ -126,6 +131,7 @@ SensorFrame Robot::sense() {
     f.beacons.push_back({b.id, bearing_to_cdeg(bearing), static_cast<std::uint8_t>(std::lround(q))});
   }
   f.temperature_c = temps_;
+  sensed_pause_ = f.pause & static_cast<std::uint8_t>(~(kPauseFrontBumper | kPauseRearBumper));
   return f;
 }
 

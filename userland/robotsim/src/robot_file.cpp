@@ -58,7 +58,7 @@ std::vector<RangeSensor> read_sensors(const Ctx& c, const YAML::Node& parent, co
 RobotDescription parse_robot(const std::string& text, const std::string& name) {
   const Ctx c{name};
   const YAML::Node doc = yaml::parse(text, name);
-  check_keys(c, doc, "robot", {"chassis", "start", "srf", "ir", "beacon_scanner", "thermal"});
+  check_keys(c, doc, "robot", {"chassis", "start", "srf", "ir", "beacon_scanner", "thermal", "drives"});
   RobotDescription d;
 
   if (const YAML::Node ch = doc["chassis"]) {
@@ -123,6 +123,28 @@ RobotDescription parse_robot(const std::string& text, const std::string& name) {
       positive(c, th[i], "tau_s", f, ch.tau_s);
       d.thermal.push_back(ch);
     }
+  }
+  if (const YAML::Node dr = doc["drives"]) {
+    check_keys(c, dr, "drives", {"propulsion", "steering"});
+    auto& u = d.drives;
+    const auto node = [&](const YAML::Node& parent, const std::string& section, std::uint8_t& v) {
+      if (parent["node"]) v = static_cast<std::uint8_t>(yaml::integer(c, parent["node"], section + ".node", 1, 127));
+    };
+    if (const YAML::Node p = dr["propulsion"]) {
+      check_keys(c, p, "drives.propulsion", {"node", "gear_ratio", "wheel_radius_m"});
+      node(p, "drives.propulsion", u.propulsion_node);
+      positive(c, p, "gear_ratio", "drives.propulsion", u.gear_ratio);
+      positive(c, p, "wheel_radius_m", "drives.propulsion", u.drive_wheel_radius_m);
+    }
+    if (const YAML::Node st = dr["steering"]) {
+      check_keys(c, st, "drives.steering", {"node", "units_per_rad", "home_switch_deg", "start_deg"});
+      node(st, "drives.steering", u.steering_node);
+      positive(c, st, "units_per_rad", "drives.steering", u.steering_units_per_rad);
+      u.home_switch_deg = yaml::number_or(c, st, "home_switch_deg", "drives.steering.home_switch_deg", u.home_switch_deg);
+      u.start_steering_deg = yaml::number_or(c, st, "start_deg", "drives.steering.start_deg", u.start_steering_deg);
+    }
+    if (u.propulsion_node == u.steering_node)
+      c.fail(dr, "drives", "propulsion and steering need different node-IDs");
   }
   if (d.srf.noise_m < 0) c.fail(srf["noise_m"], "srf.noise_m", "must be >= 0");
   if (d.ir.noise_m < 0) c.fail(ir["noise_m"], "ir.noise_m", "must be >= 0");

@@ -62,6 +62,10 @@ void Rs485SimSink::publish(const SensorFrame& f) {
   if (rising & kPauseRearBumper) send_("set " + dev_.sd1_rear + " pause " + std::to_string(kPauseRearBumper));
   if (const std::uint8_t front = rising & ~kPauseRearBumper)
     send_("set " + dev_.sd1_front + " pause " + std::to_string(front));
+  // The PAUSE line is not latched: BR-PSS2 engages it while a source is
+  // active; the PSC1 reports every change as a PAUSE event.
+  if (!dev_.psc1.empty() && f.pause != last_pause_)
+    send_("event " + dev_.psc1 + " pause " + std::to_string(f.pause != 0) + " " + std::to_string(f.pause));
   last_pause_ = f.pause;
 }
 

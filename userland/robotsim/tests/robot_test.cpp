@@ -145,9 +145,12 @@ TEST(Bumpers, WallContactStopsTheRobotAndRaisesFrontPause) {
   const auto ticks = r.exact_ticks();
   r.step(0.5, 0, 0.01);
   EXPECT_EQ(r.exact_ticks(), ticks);  // blocked: the wheels do not turn
-  // Backing away frees the bumper.
+  // Backing away frees the bumper; the motor has power again one step later
+  // (PAUSE cut it while the bumper was pressed).
   r.step(-0.2, 0, 0.1);
   EXPECT_EQ(r.sense().pause, 0);
+  EXPECT_EQ(r.exact_ticks(), ticks);
+  r.step(-0.2, 0, 0.1);
   EXPECT_LT(r.exact_ticks()[0], ticks[0]);
 }
 

@@ -65,7 +65,26 @@ TEST(Rs485SimSink, RaisesPauseSourcesOnTheirRisingEdge) {
   sink.publish(f);  // still touching: no second raise
   f.pause = kPauseFrontBumper | kPauseRearBumper;
   sink.publish(f);
-  EXPECT_EQ(rec.sent, (std::vector<std::string>{"set a:sd1@0x10 pause 1", "set a:sd1@0x11 pause 2"}));
+  f.pause = 0;
+  sink.publish(f);
+  // The SD1s latch their sources; the PSC1 reports the PAUSE line's every change.
+  EXPECT_EQ(rec.sent, (std::vector<std::string>{"set a:sd1@0x10 pause 1", "event power:psc1@0x01 pause 1 1",
+                                                  "set a:sd1@0x11 pause 2", "event power:psc1@0x01 pause 1 3",
+                                                  "event power:psc1@0x01 pause 0 0"}));
+}
+
+TEST(Rs485SimSink, NoPsc1NoPauseEvents) {
+  Robot r(test::exact_robot(), test::example_room());
+  Recorder rec;
+  Rs485Devices dev;
+  dev.psc1.clear();
+  Rs485SimSink sink(dev, r.description(), rec.send());
+  SensorFrame f = r.sense();
+  sink.publish(f);
+  rec.sent.clear();
+  f.pause = kPauseFrontBumper;
+  sink.publish(f);
+  EXPECT_EQ(rec.sent, (std::vector<std::string>{"set a:sd1@0x10 pause 1"}));
 }
 
 TEST(Max6615DebugfsSink, WritesMillidegrees) {

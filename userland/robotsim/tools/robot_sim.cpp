@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0
 // robot-sim: the virtual robot. Loads a map and a robot description, drives
-// the robot along a scripted path at a fixed rate and publishes its sensor
-// values to the device simulators (rs485-sim control socket, MAX6615
-// debugfs), optionally printing pose, ranges and bearings once a second.
+// the robot at a fixed rate, either along a scripted path, from a stream of
+// commands, or with its two CANopen drives simulated on a CAN interface
+// (--can), and publishes its sensor values to the device simulators
+// (rs485-sim control socket, MAX6615 debugfs), its true pose on LCM
+// (--lcm), optionally printing pose, ranges and bearings once a second.
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -17,19 +19,30 @@
 #include <thread>
 #include <vector>
 
+#include "advee/robotsim/can_drives.hpp"
 #include "advee/robotsim/robot.hpp"
 #include "advee/robotsim/scripted_path.hpp"
 #include "advee/robotsim/sinks.hpp"
 #include "advee/robotsim/stream_drive.hpp"
 #include "advee/robotsim/world.hpp"
 #include "advee/rs485sim/control_client.hpp"
+#ifdef ADVEE_ROBOTSIM_LCM
+#include "advee/robotsim/pose_publisher.hpp"
+#endif
 
 using namespace advee::robotsim;
 
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0;
-void on_signal(int) { g_stop = 1; }
+volatile std::sig_atomic_t g_stop = 0, g_fault = 0, g_silence = 0;
+void on_signal(int sig) {
+  if (sig == SIGUSR1)
+    g_fault = 1;
+  else if (sig == SIGUSR2)
+    g_silence = 1;
+  else
+    g_stop = 1;
+}
 
 // The drive input: "-" is stdin; a FIFO is opened read-write so that it
 // never reads end-of-file while no writer has it open.
@@ -64,40 +77,54 @@ void print_frame(const SensorFrame& f, const Pose& odo) {
 int main(int argc, char** argv) {
   CLI::App app{
       "robot-sim - the virtual Advee robot.\n\n"
-      "Drives an Ackermann robot through a 2D room (map file) along a scripted path and feeds the device\n"
+      "Drives an Ackermann robot through a 2D room (map file) and feeds the device\n"
       "simulators with what its sensors would measure: front-wheel encoder ticks (BR-SO1), 16 ultrasonic\n"
       "ranges and 4 IR ground distances (two BR-SD1), beacon bearings (BR-SBS1), bumper PAUSE sources\n"
       "(BR-SD1 GET_PAUSE_SRC) through the rs485-sim control socket, and the MAX6615 temperatures through\n"
       "the kernel simulator's debugfs files. The world advances in fixed steps of 1/--rate seconds of\n"
-      "simulated time, in real time unless --fast. docs/robotsim.md describes the model and the files.",
+      "simulated time, in real time unless --fast. The motion comes from a scripted path (--path), a\n"
+      "command stream (--drive-input) or the robot's own CANopen drives (--can IF): a simulated EPOS\n"
+      "(propulsion) and IclA (steering) that a CANopen master (driver_canbus, canopenctl) commands.\n"
+      "A bumper contact stops the robot and engages the PAUSE line (BR-PSC1 PAUSE event), which cuts\n"
+      "the drive motor's power. docs/robotsim.md describes the model and the files.",
       "robot-sim"};
   app.footer(
       "EXAMPLES:\n"
       "  robot-sim --check                                   load the files, report errors, exit\n"
       "  robot-sim --print --fast --duration 40              the scripted path without simulators\n"
-      "  robot-sim --rs485-control /run/rs485-sim.sock --max6615 /sys/kernel/debug/ts7800-sim/max6615\n\n"
+      "  robot-sim --rs485-control /run/rs485-sim.sock --max6615 /sys/kernel/debug/ts7800-sim/max6615\n"
+      "  robot-sim --can vcan0 --rs485-control /run/rs485-sim.sock --lcm --print\n\n"
       "EXIT STATUS:\n"
       "  0 done (--duration reached, or SIGINT/SIGTERM)\n"
       "  1 a simulator refused a value or could not be reached, or a bad --drive-input line\n"
       "  2 bad option or unusable map, robot or path file (the message names file, line and field)\n\n"
-          "DRIVE INPUT (--drive-input): text lines 'SPEED_MPS STEERING_DEG' (steering counter-clockwise,\n"
-      "'#' comments); the last line holds, the robot stands still until the first. Without it the\n"
-      "scripted --path drives: the simulated EPOS/IclA (canopen-sim-drive) offer no hook to read\n"
-      "their speed and steering yet.");
+      "DRIVE INPUT (--drive-input): text lines 'SPEED_MPS STEERING_DEG' (steering counter-clockwise,\n"
+      "'#' comments); the last line holds, the robot stands still until the first.\n\n"
+      "DRIVES (--can): EPOS node 1 (0x60FF/0x606C in motor rpm), IclA node 2 (0x607A/0x6064 in\n"
+      "1/10000 rad of steering, 0 = straight ahead after homing); robot.yaml's drives: section sets\n"
+      "nodes, gear, wheel radius, units, home switch and start angle. They behave like\n"
+      "canopen-sim-drive's (NMT, SDO, PDOs, heartbeat, CiA 402). Signals: SIGUSR1 = EMCY 0x4210 + fault\n"
+      "on the EPOS, SIGUSR2 = heartbeat silence of both on/off.");
   const std::string etc = ADVEE_ROBOTSIM_SYSCONFDIR "/";
   std::string map_file = etc + "room.yaml", robot_file = etc + "robot.yaml", path_file = etc + "square-path.yaml";
   double rate = 100, publish_rate = 10, duration = 0;
   unsigned seed = 1;
   bool print = false, fast = false, check = false;
-  std::string rs485_control, max6615_dir, drive_input;
+  std::string rs485_control, max6615_dir, drive_input, can_if, lcm_url;
   Rs485Devices devices;
   app.add_option("-m,--map", map_file, "map file: walls, obstacles, beacons")->capture_default_str();
   app.add_option("-r,--robot", robot_file, "robot description: chassis, start pose, sensors, thermal model")
       ->capture_default_str();
   app.add_option("-p,--path", path_file, "scripted drive: list of {speed_mps, steering_deg, duration_s}")
       ->capture_default_str();
-  app.add_option("--drive-input", drive_input,
-                 "read the drive commands from this file, FIFO or '-' (stdin) instead of --path");
+  auto* input_opt = app.add_option("--drive-input", drive_input,
+                                   "read the drive commands from this file, FIFO or '-' (stdin) instead of --path");
+  app.add_option("--can", can_if, "run the simulated EPOS and IclA on this CAN interface (e.g. vcan0); the robot "
+                                  "moves as they do (real time only)")
+      ->excludes(input_opt);
+  auto* lcm_opt = app.add_option("--lcm", lcm_url, "publish the true pose on SIM_DATA_POSE at 10 Hz; optional LCM "
+                                                   "URL (default: LCM_DEFAULT_URL or LCM's own default)")
+                      ->expected(0, 1);
   app.add_option("--rate", rate, "simulation steps per second")->check(CLI::Range(1.0, 10000.0))->capture_default_str();
   app.add_option("--publish-rate", publish_rate, "sensor frames per second sent to the simulators")
       ->check(CLI::Range(0.1, 1000.0))->capture_default_str();
@@ -111,6 +138,7 @@ int main(int argc, char** argv) {
   app.add_option("--sd1-rear", devices.sd1_rear, "rear BR-SD1")->capture_default_str();
   app.add_option("--so1", devices.so1, "BR-SO1 odometry board")->capture_default_str();
   app.add_option("--sbs1", devices.sbs1, "BR-SBS1 beacon scanner")->capture_default_str();
+  app.add_option("--psc1", devices.psc1, "BR-PSC1 that reports the PAUSE line ('' = none)")->capture_default_str();
   app.add_option("--max6615", max6615_dir,
                  "MAX6615 model's debugfs directory (e.g. /sys/kernel/debug/ts7800-sim/max6615; none: not written)");
   app.add_flag("--print", print, "print pose, odometry, ranges, bearings, PAUSE and temperatures once per "
@@ -129,11 +157,21 @@ int main(int argc, char** argv) {
   try {
     world = load_world(map_file);
     desc = load_robot(robot_file);
-    if (drive_input.empty()) path = load_path(path_file);
+    if (drive_input.empty() && can_if.empty()) path = load_path(path_file);
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "robot-sim: %s\n", e.what());
     return 2;
   }
+  if (!can_if.empty() && fast) {
+    std::fprintf(stderr, "robot-sim: --can runs in real time (the drives follow the clock): drop --fast\n");
+    return 2;
+  }
+#ifndef ADVEE_ROBOTSIM_LCM
+  if (lcm_opt->count()) {
+    std::fprintf(stderr, "robot-sim: built without LCM: --lcm is not available\n");
+    return 2;
+  }
+#endif
   Robot robot(desc, world, seed);
   if (robot.bumper_contact(robot.pose())) {
     std::fprintf(stderr, "robot-sim: %s: the start pose touches a wall or obstacle of %s\n", robot_file.c_str(),
@@ -154,14 +192,36 @@ int main(int argc, char** argv) {
     }));
   if (!max6615_dir.empty()) sinks.push_back(std::make_unique<Max6615DebugfsSink>(max6615_dir));
   std::unique_ptr<DriveSource> drive;
+  CanDrives* can = nullptr;
   try {
-    if (drive_input.empty())
+    if (!can_if.empty()) {
+      auto d = std::make_unique<CanDrives>(can_if, desc.drives);
+      can = d.get();
+      drive = std::move(d);
+    } else if (drive_input.empty()) {
       drive = std::make_unique<ScriptedDrive>(path);
-    else
+    } else {
       drive = std::make_unique<StreamDrive>(open_drive_input(drive_input));
+    }
   } catch (const std::system_error& e) {
     std::fprintf(stderr, "robot-sim: %s\n", e.what());
     return 2;
+  }
+#ifdef ADVEE_ROBOTSIM_LCM
+  std::unique_ptr<PosePublisher> pose_pub;
+  if (lcm_opt->count()) {
+    try {
+      pose_pub = std::make_unique<PosePublisher>(lcm_url);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "robot-sim: %s\n", e.what());
+      return 2;
+    }
+  }
+#endif
+  if (can) {
+    std::printf("drives on %s: EPOS node %u, IclA node %u\n", can_if.c_str(), desc.drives.propulsion_node,
+                desc.drives.steering_node);
+    std::fflush(stdout);
   }
   TickOdometry odo(desc.chassis, robot.pose());
 
@@ -169,16 +229,31 @@ int main(int argc, char** argv) {
   sa.sa_handler = on_signal;
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGUSR1, &sa, nullptr);
+  sigaction(SIGUSR2, &sa, nullptr);
 
   const double dt = 1.0 / rate;
   const long steps_per_publish = std::max(1L, std::lround(rate / publish_rate));
   const long steps_per_print = std::max(1L, std::lround(rate));
+  [[maybe_unused]] const long steps_per_pose = std::max(1L, std::lround(rate / 10));  // SIM_DATA_POSE at 10 Hz
   const long total = duration > 0 ? std::lround(duration * rate) : -1;
   auto next = std::chrono::steady_clock::now();
   try {
     for (long i = 1; !g_stop && (total < 0 || i <= total); ++i) {
+      if (can && g_fault) {
+        g_fault = 0;
+        std::printf("EPOS: inject EMCY 0x4210\n");
+        can->inject_fault(desc.drives.propulsion_node, 0x4210);
+      }
+      if (can && g_silence) {
+        g_silence = 0;
+        std::printf("drives: heartbeat %s\n", can->toggle_heartbeat_silence() ? "silent" : "on");
+      }
       const DriveCommand cmd = drive->command(robot.time());
       robot.step(cmd.speed_mps, cmd.steering_rad, dt);
+#ifdef ADVEE_ROBOTSIM_LCM
+      if (pose_pub && i % steps_per_pose == 0) pose_pub->publish(robot);
+#endif
       const bool publish = i % steps_per_publish == 0, show = print && i % steps_per_print == 0;
       if (publish || show) {
         const SensorFrame f = robot.sense();
@@ -186,7 +261,16 @@ int main(int argc, char** argv) {
           for (auto& s : sinks) s->publish(f);
           odo.update(f.ticks[0], f.ticks[1]);
         }
-        if (show) print_frame(f, odo.pose());
+        if (show) {
+          print_frame(f, odo.pose());
+          if (can) {
+            const DriveStatus d = can->status();
+            std::printf("  drives epos=%s %.1frpm icla=%s pos=%.0f\n",
+                        std::string(advee::canopen::cia402::to_string(d.epos_state)).c_str(), d.epos_rpm,
+                        std::string(advee::canopen::cia402::to_string(d.icla_state)).c_str(), d.icla_position);
+            std::fflush(stdout);
+          }
+        }
       }
       if (!fast) {
         next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(dt));

@@ -108,7 +108,7 @@ void SimulatedDrive::build_dictionary() {
   od_.add<std::int32_t>(0x6064, 0, 0, A::kReadOnly, true);
   od_.add<std::int32_t>(0x606C, 0, 0, A::kReadOnly, true);
   od_.add<std::int32_t>(0x607A, 0, 0, A::kReadWrite, true);
-  od_.add<std::int32_t>(0x607C, 0, 0);
+  od_.add<std::int32_t>(0x607C, 0, cfg_.home_offset);
   od_.add<std::uint32_t>(0x607F, 0, 25000);
   od_.add<std::uint32_t>(0x6081, 0, 1000, A::kReadWrite, true);
   od_.add<std::uint32_t>(0x6083, 0, 10000, A::kReadWrite, true);
@@ -379,6 +379,7 @@ void SimulatedDrive::process_controlword() {
       homing_attained_ = false;
       homing_error_ = false;
       homing_start_ = pos_;
+      homing_start_travel_ = travel_;
     }
   }
   if (fall) setpoint_ack_ = false;
@@ -430,6 +431,7 @@ void SimulatedDrive::step(double dt) {
         const double vstop = std::sqrt(2.0 * decel * std::fabs(dist) / cfg_.position_per_velocity);
         target = std::copysign(std::min(vmax, vstop), dist);
         if (std::fabs(dist) < 0.5) {
+          travel_ += target_pos_ - pos_;
           pos_ = target_pos_;
           vel_ = target = 0;
           moving_ = false;
@@ -442,16 +444,22 @@ void SimulatedDrive::step(double dt) {
           homing_attained_ = true;
           break;
         }
-        const double dir = cfg_.home_switch_position >= homing_start_ ? 1.0 : -1.0;
+        // The switch and the search in the counter's frame, or in the mechanism's.
+        const bool mech = cfg_.home_switch_travel.has_value();
+        const double sw_at = mech ? *cfg_.home_switch_travel : cfg_.home_switch_position;
+        const double here = mech ? travel_ : pos_, start = mech ? homing_start_travel_ : homing_start_;
+        const double dir = sw_at >= start ? 1.0 : -1.0;
         target = dir * od_.get<std::uint32_t>(0x6099, 1);
         accel = od_.get<std::uint32_t>(0x609A);
-        const bool at_switch = dir > 0 ? pos_ >= cfg_.home_switch_position : pos_ <= cfg_.home_switch_position;
+        const bool at_switch = dir > 0 ? here >= sw_at : here <= sw_at;
         if (at_switch && !faults_.homing_switch_missing && method != 0) {
-          pos_ = od_.get<std::int32_t>(0x607C);
+          // A mechanical switch latches the counter at its edge: the part of
+          // the last step past it stays in the position.
+          pos_ = od_.get<std::int32_t>(0x607C) + (mech ? here - sw_at : 0.0);
           vel_ = target = 0;
           homing_active_ = false;
           homing_attained_ = true;
-        } else if (std::fabs(pos_ - homing_start_) > 100000 || method == 0) {
+        } else if (std::fabs(here - start) > 100000 || method == 0) {
           vel_ = target = 0;
           homing_active_ = false;
           homing_error_ = true;
@@ -468,6 +476,7 @@ void SimulatedDrive::step(double dt) {
   else
     vel_ += target > vel_ ? dv : -dv;
   pos_ += vel_ * cfg_.position_per_velocity * dt;
+  travel_ += vel_ * cfg_.position_per_velocity * dt;
 
   if (state_ == State::kQuickStopActive && vel_ == 0) {
     const bool has_option = od_.find(0x605A, 0) != nullptr;

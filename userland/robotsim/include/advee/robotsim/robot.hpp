@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "advee/robotsim/drive_units.hpp"
 #include "advee/robotsim/geometry.hpp"
 #include "advee/robotsim/world.hpp"
 
@@ -72,6 +73,7 @@ struct RobotDescription {
   IrModel ir;
   BeaconScanner scanner;
   std::vector<ThermalChannel> thermal;  // MAX6615 temp1, temp2
+  DriveUnits drives;                    // the CANopen drives' units (robot-sim --can)
 };
 
 RobotDescription parse_robot(const std::string& yaml_text, const std::string& name);
@@ -115,8 +117,19 @@ class Robot {
   // Applies the drive's speed and steering (clamped to the chassis' limits)
   // for dt seconds: exact arc integration of the pose, encoder ticks, thermal
   // model. A move that would touch a wall or obstacle is not made (the robot
-  // stops at its last free pose) and raises the bumper PAUSE source.
+  // stops at its last free pose) and raises the bumper PAUSE source; the
+  // bumper stays pressed while the propulsion pushes towards the obstacle.
+  // While PAUSE is engaged the drive motor has no power (thesis 4.3): the
+  // robot does not move, whatever the speed.
   void step(double speed_mps, double steering_rad, double dt);
+
+  // The PAUSE line (BR-PSS2): the sources active now, the bumpers from the
+  // last step, ground and proximity from the last sense().
+  std::uint8_t pause_sources() const { return bumper_ | sensed_pause_; }
+  bool motor_powered() const { return pause_sources() == 0; }
+  // Actual speed and steering after the last step (0 speed while stopped).
+  double speed() const { return speed_; }
+  double steering() const { return steering_; }
 
   const Pose& pose() const { return pose_; }
   void set_pose(const Pose& p) { pose_ = p; }
@@ -144,6 +157,7 @@ class Robot {
   std::array<double, 2> ticks_{};
   std::vector<double> temps_;
   std::uint8_t bumper_ = 0;
+  std::uint8_t sensed_pause_ = 0;
 };
 
 }  // namespace advee::robotsim

@@ -48,12 +48,15 @@ class ScriptedDrive : public DriveSource {
 
 // Sends the values as rs485-sim control commands ("set sd1@0x10 srf 3 1.25",
 // "set so1@0x20 ticks L R", "set sbs1@0x30 beacon 2 123.45 200",
-// "set sd1@0x10 pause 1"), only those that changed since the last frame.
+// "set sd1@0x10 pause 1"), only those that changed since the last frame; the
+// PAUSE line as a BR-PSC1 PAUSE event ("event psc1@0x01 pause 1 1") whenever
+// the set of active sources changes (engaged while any is active).
 // `send` delivers one command and throws on an error reply
 // (rs485sim::control_ok in robot-sim, a recorder in the tests).
 struct Rs485Devices {
   std::string sd1_front = "a:sd1@0x10", sd1_rear = "a:sd1@0x11";
   std::string so1 = "a:so1@0x20", sbs1 = "b:sbs1@0x30";
+  std::string psc1 = "power:psc1@0x01";  // empty: the PAUSE line is not reported
 };
 
 class Rs485SimSink : public SensorSink {

@@ -39,6 +39,13 @@ struct DriveSimConfig {
   // encoder counts of a 500-line encoder at 4x: 2000/60).
   double position_per_velocity = 2000.0 / 60.0;
   double home_switch_position = -3000;  // where the home switch sits
+  // A mechanical home switch: where travel() (the shaft's displacement since
+  // power-on, kept across homing and NMT resets) meets it; when set, it
+  // replaces home_switch_position. For a drive coupled to a mechanism
+  // (robot-sim's steering), whose switch does not move when the drive's
+  // position counter is re-referenced.
+  std::optional<double> home_switch_travel = std::nullopt;
+  std::int32_t home_offset = 0;  // 0x607C at power-on: the position homing sets at the switch
   Duration step = std::chrono::milliseconds(1);
 };
 
@@ -65,6 +72,9 @@ class SimulatedDrive {
   NmtState nmt_state() const { return nmt_; }
   double position() const { return pos_; }
   double velocity() const { return vel_; }
+  // Displacement of the shaft since construction, in position units: what
+  // the mechanism moved, unlike position() it does not jump on homing or reset.
+  double travel() const { return travel_; }
   std::uint64_t rpdos_received() const { return rpdos_received_; }
   std::uint64_t tpdos_sent() const { return tpdos_sent_; }
 
@@ -100,6 +110,7 @@ class SimulatedDrive {
   std::uint16_t prev_cw_ = 0;
   double pos_ = 0;
   double vel_ = 0;
+  double travel_ = 0;
   // pp
   bool setpoint_ack_ = false;
   bool moving_ = false;
@@ -109,6 +120,7 @@ class SimulatedDrive {
   bool homing_attained_ = false;
   bool homing_error_ = false;
   double homing_start_ = 0;
+  double homing_start_travel_ = 0;
 
   TimePoint last_step_{};
   TimePoint next_heartbeat_{};
