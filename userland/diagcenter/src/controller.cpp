@@ -152,7 +152,8 @@ bool Controller::summary_key(const Key& k, double now) {
       }
       if (k.value == 'o') {
         model_.reset_odometry();
-        status_ = "odometry position reset to 0, 0";
+        status_ = model_.true_pose().has() ? "odometry position reset to the true pose"
+                                           : "odometry position reset to 0, 0";
         return true;
       }
       return false;

@@ -12,8 +12,6 @@ namespace advee::diagcenter {
 
 namespace {
 
-constexpr const char* kSimPoseChannel = "SIM_DATA_POSE";
-
 template <typename Msg>
 bool decode_into(const void* data, std::size_t size, Msg& m) {
   return m.decode(data, 0, static_cast<int>(size)) >= 0;
@@ -27,27 +25,6 @@ bool take(Latest<Msg>& slot, const void* data, std::size_t size, double now) {
   slot.at = now;
   return true;
 }
-
-#if ADVEE_DIAGCENTER_HAVE_SIM_POSE
-// The simulator's type is written by another component; read its fields by
-// the names it may reasonably use, so that a rename there cannot break this
-// build (a field not found reads as NaN and shows as such).
-#define ADVEE_FIELD_OR_NAN(fn, ...)                                            \
-  template <typename P>                                                       \
-  double fn(const P& p) {                                                     \
-    __VA_ARGS__                                                               \
-    return std::nan("");                                                      \
-  }
-#define ADVEE_TRY(f) \
-  if constexpr (requires { p.f; }) return static_cast<double>(p.f);
-ADVEE_FIELD_OR_NAN(pose_x, ADVEE_TRY(x_m) else ADVEE_TRY(x))
-ADVEE_FIELD_OR_NAN(pose_y, ADVEE_TRY(y_m) else ADVEE_TRY(y))
-ADVEE_FIELD_OR_NAN(pose_heading, ADVEE_TRY(heading_rad) else ADVEE_TRY(theta_rad) else ADVEE_TRY(yaw_rad) else ADVEE_TRY(heading))
-ADVEE_FIELD_OR_NAN(pose_speed, ADVEE_TRY(speed_mps) else ADVEE_TRY(v_mps))
-ADVEE_FIELD_OR_NAN(pose_steering, ADVEE_TRY(steering_rad) else ADVEE_TRY(steer_rad))
-#undef ADVEE_TRY
-#undef ADVEE_FIELD_OR_NAN
-#endif
 
 }  // namespace
 
@@ -65,7 +42,7 @@ const char* phase_name(int phase) {
 std::vector<std::string> model_channels() {
   std::vector<std::string> v;
   for (const auto& c : msgs::kAllChannels) v.emplace_back(c.name);
-  if (Model::kHaveTruePose) v.emplace_back(kSimPoseChannel);
+  v.emplace_back(kSimPoseChannel);
   return v;
 }
 
@@ -131,18 +108,21 @@ bool Model::handle(const std::string& ch, const void* data, std::size_t size, do
     ok = take(power_cmd_, data, size, now);
   } else if (ch == msgs::kCmdState.name || ch == msgs::kDataActiveBeacons.name) {
     ok = true;  // seen (counts as traffic); nothing of it is shown
-#if ADVEE_DIAGCENTER_HAVE_SIM_POSE
   } else if (ch == kSimPoseChannel) {
     sim::data_pose_t p;
     if ((ok = decode_into(data, size, p))) {
-      true_pose_.x_m = pose_x(p);
-      true_pose_.y_m = pose_y(p);
-      true_pose_.heading_rad = pose_heading(p);
-      true_pose_.speed_mps = pose_speed(p);
-      true_pose_.steering_rad = pose_steering(p);
+      true_pose_.x_m = p.x_m;
+      true_pose_.y_m = p.y_m;
+      true_pose_.heading_rad = p.heading_rad;
+      true_pose_.speed_mps = p.speed_mps;
+      true_pose_.steering_rad = p.steering_rad;
       true_pose_.at = now;
+      if (!odo_from_truth_) {
+        // The first ground truth: the estimate continues from there.
+        odo_pose_.reset({p.x_m, p.y_m, p.heading_rad});
+        odo_from_truth_ = true;
+      }
     }
-#endif
   } else {
     known = false;
   }
@@ -154,6 +134,13 @@ bool Model::handle(const std::string& ch, const void* data, std::size_t size, do
   ++messages_;
   last_at_ = now;
   return true;
+}
+
+void Model::reset_odometry() {
+  if (true_pose_.has())
+    odo_pose_.reset({true_pose_.x_m, true_pose_.y_m, true_pose_.heading_rad});
+  else
+    odo_pose_.reset();
 }
 
 std::optional<bool> Model::pause_engaged() const {

@@ -43,8 +43,8 @@ std::string text_summary(const Model& m, double now, double elapsed_s) {
 
   // Position estimate from odometry (integrated since start or the last reset).
   const auto& p = m.odometry().pose();
-  o << f("pose_odo x=%.3f y=%.3f heading=%.3f distance=%.3f", p.x_m, p.y_m, p.heading_rad,
-         m.odometry().distance_m());
+  o << f("pose_odo x=%.3f y=%.3f heading=%.3f distance=%.3f origin=%s", p.x_m, p.y_m, p.heading_rad,
+         m.odometry().distance_m(), m.odometry_from_true_pose() ? "true" : "zero");
   o << (m.odo().has() ? age(m.odo(), now, msgs::kDataOdo.rate_hz) : std::string(" age=none"))
     << "\n";
 

@@ -10,6 +10,7 @@
 #include "common/data_module_phase_t.hpp"
 #include "common/data_state_t.hpp"
 #include "encode.hpp"
+#include "sim/data_pose_t.hpp"
 
 using namespace advee::diagcenter;
 using advee::diagcenter::test::encode;
@@ -226,4 +227,28 @@ TEST(Model, SubscribesEveryChannelOnLcm) {
   EXPECT_EQ(m.motion_cmd().msg.speed_mps, 0.3);
   EXPECT_EQ(m.motion_cmd().msg.module, "planner");
   EXPECT_EQ(m.fans().msg.rpm[0], 1500);
+}
+
+// On the simulated robot the estimate starts at the first ground truth and
+// integrates from there; later true poses do not move it (it is an estimate,
+// not a copy); a reset goes back to the newest true pose.
+TEST(Model, OdometryStartsAtTheFirstTruePose) {
+  Model m;
+  EXPECT_FALSE(m.odometry_from_true_pose());
+  sim::data_pose_t p{};
+  p.x_m = 2.0;
+  p.y_m = 1.0;
+  p.heading_rad = std::numbers::pi;  // facing -x
+  EXPECT_TRUE(feed(m, "SIM_DATA_POSE", p, 1.0));
+  EXPECT_TRUE(m.odometry_from_true_pose());
+  EXPECT_TRUE(m.true_pose().has());
+  feed(m, "LL_DATA_ODO", odo(1.0, 0, 0.5), 1.5);
+  EXPECT_NEAR(m.odometry().pose().x_m, 1.5, 1e-12);
+  EXPECT_NEAR(m.odometry().pose().y_m, 1.0, 1e-12);
+  p.x_m = 1.45;  // the truth differs a little (wheel slip)
+  feed(m, "SIM_DATA_POSE", p, 1.6);
+  EXPECT_NEAR(m.odometry().pose().x_m, 1.5, 1e-12);
+  EXPECT_EQ(m.true_pose().x_m, 1.45);
+  m.reset_odometry();
+  EXPECT_EQ(m.odometry().pose().x_m, 1.45);
 }

@@ -9,6 +9,7 @@
 #include "common/data_module_phase_t.hpp"
 #include "common/data_state_t.hpp"
 #include "encode.hpp"
+#include "sim/data_pose_t.hpp"
 
 using namespace advee::diagcenter;
 using advee::module::State;
@@ -36,7 +37,7 @@ TEST(TextSummary, EmptyModelSaysNone) {
   Model m;
   const auto b = text_summary(m, 10.0, 1.0);
   EXPECT_EQ(line(b, "summary"), "summary t=1.0 messages=0");
-  EXPECT_EQ(line(b, "pose_odo"), "pose_odo x=0.000 y=0.000 heading=0.000 distance=0.000 age=none");
+  EXPECT_EQ(line(b, "pose_odo"), "pose_odo x=0.000 y=0.000 heading=0.000 distance=0.000 origin=zero age=none");
   EXPECT_EQ(line(b, "pose_true"), "pose_true none");
   EXPECT_EQ(line(b, "motion"), "motion cmd_v=none cmd_steer=none v=none steer=none");
   for (const char* t : {"odo", "drives", "modules", "srf", "ir", "beacons", "temps", "fans",
@@ -134,7 +135,7 @@ TEST(TextSummary, EveryTopicWithValuesAndAges) {
 
   const auto b = text_summary(m, 10.0, 3.0);
   EXPECT_EQ(line(b, "summary"), "summary t=3.0 messages=13");
-  EXPECT_EQ(line(b, "pose_odo"), "pose_odo x=1.000 y=0.000 heading=0.000 distance=1.000 age=0.2");
+  EXPECT_EQ(line(b, "pose_odo"), "pose_odo x=1.000 y=0.000 heading=0.000 distance=1.000 origin=zero age=0.2");
   EXPECT_EQ(line(b, "odo"), "odo v=0.500 w=0.000 age=0.2");
   EXPECT_EQ(line(b, "motion"),
             "motion cmd_v=0.300 cmd_steer=0.087 cmd_age=0.1 cmd_from=diagnostic_center v=0.290 "
@@ -166,4 +167,25 @@ TEST(TextSummary, TokensStayOneWord) {
   EXPECT_EQ(token("switch on disabled"), "switch_on_disabled");
   EXPECT_EQ(token("a=b"), "a_b");
   EXPECT_EQ(token(""), "-");
+}
+
+TEST(TextSummary, TruePoseAndOdometryInTheWorldFrame) {
+  Model m;
+  sim::data_pose_t p{};
+  p.x_m = 1.5;
+  p.y_m = 2.0;
+  p.heading_rad = 1.5707963267948966;  // facing +y
+  p.speed_mps = 0.5;
+  p.steering_rad = 0.1;
+  feed(m, "SIM_DATA_POSE", p, 9.9);
+  lowlevel::data_odo_t o{};
+  o.speed_mps = 0.5;
+  o.interval_s = 1.0;
+  feed(m, "LL_DATA_ODO", o, 10.0);
+  const auto b = text_summary(m, 10.0, 1.0);
+  EXPECT_EQ(line(b, "pose_true"),
+            "pose_true x=1.500 y=2.000 heading=1.571 speed=0.500 steering=0.100 age=0.1");
+  // The estimate continued from the first true pose: 0.5 m along +y.
+  EXPECT_EQ(line(b, "pose_odo"),
+            "pose_odo x=1.500 y=2.500 heading=1.571 distance=0.500 origin=true age=0.0");
 }

@@ -67,7 +67,8 @@ attr_t fresh_attr(const Latest<Msg>& l, double now, double rate_hz) {
 void draw_title(const Controller& ctl) {
   move(0, 0);
   clrtoeol();
-  std::string t = " Advee diagnostic centre |";
+  // The full name only where it leaves room for the views and the MANUAL mark.
+  std::string t = COLS >= 100 ? " Advee diagnostic centre |" : " Advee |";
   put(0, 0, std::string(static_cast<std::size_t>(COLS), ' '), color(kTitle));
   put(0, 0, t, color(kTitle) | A_BOLD);
   int x = static_cast<int>(t.size());
@@ -85,10 +86,10 @@ void draw_title(const Controller& ctl) {
 
 void draw_footer(const Model& model, const Controller& ctl, const char* url) {
   static const char* help[] = {
-      "arrows drive  space stop  m manual on/off  h home steering  o odo=0  1-4 view  q quit",
+      "arrows drive  space stop  m manual on/off  h home steering  o odo=0  q quit",
       "up/down scroll  c clear  space stop  1-4/F1-F4 view  q quit",
-      "up/down select  r RUN  p PAUSE  s STOP  t TERMINATE  space stop  1-4 view  q quit",
-      "up/down select  enter toggle  n on  f off  space stop  1-4/F1-F4 view  q quit",
+      "up/down select  r RUN  p PAUSE  s STOP  t TERMINATE  space stop  q quit",
+      "up/down select  enter toggle  n on  f off  space stop  1-4 view  q quit",
   };
   std::string status = ctl.status();
   if (model.messages() == 0)
@@ -218,20 +219,21 @@ void draw_summary(const Model& model, double now) {
   const auto& p = model.odometry().pose();
   const auto& odo = model.odo();
   put_w(r++, 0, w,
-        f("Pos odo  x %+7.2f y %+7.2f h %+6.1f", p.x_m, p.y_m, p.heading_rad * kRadToDeg) +
-            (odo.has() ? stale_mark(odo.age(now), stale_after_s(msgs::kDataOdo.rate_hz)) : " (no odo)"),
+        f("Pos odo  x %+6.2f y %+6.2f h %+6.1f", p.x_m, p.y_m, p.heading_rad * kRadToDeg) +
+            (odo.has() ? stale_mark(odo.age(now), stale_after_s(msgs::kDataOdo.rate_hz)) : " -"),
         odo.has() ? fresh_attr(odo, now, msgs::kDataOdo.rate_hz) : A_DIM);
   const auto& t = model.true_pose();
   if (t.has())
-    put_w(r++, 0, w, f("Pos true x %+7.2f y %+7.2f h %+6.1f", t.x_m, t.y_m, t.heading_rad * kRadToDeg) +
+    put_w(r++, 0, w, f("Pos true x %+6.2f y %+6.2f h %+6.1f", t.x_m, t.y_m, t.heading_rad * kRadToDeg) +
                          stale_mark(now - t.at, stale_after_s(10)));
   else
-    put_w(r++, 0, w, Model::kHaveTruePose ? "Pos true (no SIM_DATA_POSE)" : "Pos true (not built in)", A_DIM);
+    put_w(r++, 0, w, "Pos true (no SIM_DATA_POSE)", A_DIM);
 
   const auto& c = model.motion_cmd();
   if (c.has())
-    put_w(r++, 0, w, f("Command  v %+5.2f m/s  steer %+5.1f %s", c.msg.speed_mps, c.msg.steering_rad * kRadToDeg,
-                       c.msg.module.c_str()) + stale_mark(c.age(now), 1.0),
+    put_w(r++, 0, w, f("Command  v %+5.2f m/s steer %+5.1f by %s", c.msg.speed_mps, c.msg.steering_rad * kRadToDeg,
+                       c.msg.module == "diagnostic_center" ? "us" : c.msg.module.c_str()) +
+                         stale_mark(c.age(now), 1.0),
           c.age(now) > 1.0 ? A_DIM : A_NORMAL);
   else
     put_w(r++, 0, w, "Command  (no LL_CMD_MOTION)", A_DIM);
@@ -239,7 +241,7 @@ void draw_summary(const Model& model, double now) {
   const auto& d = model.drives();
   if (d.has()) {
     const attr_t a = fresh_attr(d, now, msgs::kDataDrives.rate_hz);
-    put_w(r++, 0, w, f("Drives   v %+5.2f m/s  steer %+5.1f", d.msg.speed_mps, d.msg.steering_rad * kRadToDeg) +
+    put_w(r++, 0, w, f("Drives   v %+5.2f m/s steer %+5.1f", d.msg.speed_mps, d.msg.steering_rad * kRadToDeg) +
                          stale_mark(d.age(now), stale_after_s(msgs::kDataDrives.rate_hz)), a);
     std::string states;
     for (std::size_t i = 0; i < static_cast<std::size_t>(d.msg.num_drives); ++i)
@@ -346,8 +348,8 @@ void draw_errors(const Model& model, const Controller& ctl, double now) {
 // --- modules ---------------------------------------------------------------
 
 void draw_modules(const Model& model, const Controller& ctl, double now) {
-  put(1, 0, "Module control: CM_CMD_STATE to the selected module (manual); restarts from CM_DATA_MODULES", A_BOLD);
-  put(2, 0, "  module           state    pid      age  supervisor   restarts exit next", A_BOLD);
+  put(1, 0, "Modules: CM_DATA_STATE; supervisor phase and restarts: CM_DATA_MODULES", A_BOLD);
+  put(2, 0, "  module           state     pid        age  supervisor   restarts exit next", A_BOLD);
   int r = 3;
   std::size_t i = 0;
   const std::size_t sel = ctl.module_row();
@@ -368,7 +370,7 @@ void draw_modules(const Model& model, const Controller& ctl, double now) {
     const std::string nx = mi.next_start_ms >= 0 ? f("%dms", mi.next_start_ms) : "-";
     attr_t a = stale ? A_DIM : A_NORMAL;
     if (i == sel) a = A_REVERSE;
-    put(r++, 0, f("%c %-16.16s %-8.8s %-8d %5s  %-12s %-8s %-4s %s", i == sel ? '>' : ' ', name.c_str(), st.c_str(),
+    put(r++, 0, f("%c %-16.16s %-9.9s %-8d %6s  %-12s %-8s %-4s %s", i == sel ? '>' : ' ', name.c_str(), st.c_str(),
                   mi.pid, ag.c_str(), phase_name(mi.phase), rst.c_str(), ex.c_str(), nx.c_str()), a);
     ++i;
   }

@@ -36,12 +36,7 @@
 #include "lowlevel/data_temperature_t.hpp"
 #include "lowlevel/event_stop_t.hpp"
 
-#if __has_include("sim/data_pose_t.hpp")
 #include "sim/data_pose_t.hpp"
-#define ADVEE_DIAGCENTER_HAVE_SIM_POSE 1
-#else
-#define ADVEE_DIAGCENTER_HAVE_SIM_POSE 0
-#endif
 
 namespace advee::diagcenter {
 
@@ -118,8 +113,13 @@ class Model {
   std::uint64_t errors_total() const { return errors_total_; }
   void clear_errors() { errors_.clear(); }
 
+  // The position estimate. It starts at 0, 0, heading 0 - or, on the
+  // simulated robot, at the first ground-truth pose (SIM_DATA_POSE), so that
+  // both are in the world frame and can be compared directly.
   const PoseIntegrator& odometry() const { return odo_pose_; }
-  void reset_odometry() { odo_pose_.reset(); }
+  bool odometry_from_true_pose() const { return odo_from_truth_; }
+  // Back to the newest true pose when there is one, else to 0, 0.
+  void reset_odometry();
 
   const Latest<lowlevel::data_odo_t>& odo() const { return odo_; }
   const Latest<lowlevel::cmd_motion_t>& motion_cmd() const { return motion_; }
@@ -133,7 +133,6 @@ class Model {
   const Latest<lowlevel::cmd_homing_t>& homing_cmd() const { return homing_; }
   const Latest<lowlevel::cmd_power_t>& power_cmd() const { return power_cmd_; }
   const TruePose& true_pose() const { return true_pose_; }
-  static constexpr bool kHaveTruePose = ADVEE_DIAGCENTER_HAVE_SIM_POSE;
 
   // PAUSE engaged: the newest of LL_EVENT_STOP and LL_DATA_POWER.paused.
   // nullopt while neither has been heard.
@@ -163,6 +162,7 @@ class Model {
   Latest<lowlevel::cmd_homing_t> homing_;
   Latest<lowlevel::cmd_power_t> power_cmd_;
   TruePose true_pose_;
+  bool odo_from_truth_ = false;
   std::uint64_t messages_ = 0;
   std::uint64_t decode_failures_ = 0;
   double last_at_ = kNever;
@@ -172,7 +172,9 @@ class Model {
   std::vector<std::unique_ptr<Sub>> subs_;
 };
 
-// The channels the model subscribes (kAllChannels, plus SIM_DATA_POSE when built with it).
+inline constexpr const char* kSimPoseChannel = "SIM_DATA_POSE";  // the simulator's ground truth, 10 Hz
+
+// The channels the model subscribes: kAllChannels and SIM_DATA_POSE.
 std::vector<std::string> model_channels();
 
 }  // namespace advee::diagcenter
