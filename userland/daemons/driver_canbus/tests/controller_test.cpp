@@ -1,0 +1,375 @@
+// SPDX-License-Identifier: GPL-2.0
+// DriveController against the simulated EPOS (node 1) and IclA (node 2) on
+// the in-process virtual bus with a manual clock: boot, the drive units,
+// clamping, the homing gate, the command-timeout quick stop, LL_EVENT_STOP,
+// PAUSE/RUN, faults, heartbeat loss and a rebooted drive.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "advee/canopen/sim/drive_sim.hpp"
+#include "advee/canopen/virtual_bus.hpp"
+#include "advee/driver_canbus/controller.hpp"
+#include "advee/driver_canbus/messages.hpp"
+
+namespace advee::driver_canbus {
+namespace {
+
+using namespace std::chrono_literals;
+using canopen::CanFrame;
+using canopen::cia402::State;
+namespace sim = canopen::sim;
+
+struct Reported {
+  module::Severity severity;
+  int number;
+  std::string text;
+};
+
+ControllerConfig robot_config() {
+  ControllerConfig c;
+  c.epos.wheel_radius_m = 0.125;
+  c.epos.gear_ratio = 26;
+  c.icla.units_per_rad = 10000;
+  c.icla.profile_velocity = 20000;
+  c.icla.homing_speed = 4000;
+  c.icla.homing_acceleration = 10000;
+  return c;
+}
+
+class ControllerTest : public testing::Test {
+ protected:
+  canopen::ManualClock clock;
+  canopen::VirtualBus bus;
+  std::size_t mport = bus.attach([this](const CanFrame& f) { master.handle(f); });
+  std::size_t eport = bus.attach([this](const CanFrame& f) { epos_sim.handle(f); });
+  std::size_t iport = bus.attach([this](const CanFrame& f) { icla_sim.handle(f); });
+  canopen::Master master{canopen::MasterConfig{0x7F, 200ms, 100ms}, bus.sender(mport), clock.fn()};
+  sim::SimulatedDrive epos_sim{sim::DriveSimConfig{1, sim::DriveProfile::kEpos}, bus.sender(eport), clock.fn()};
+  // IclA: velocity in units/s; home switch 0.08 rad to the right.
+  sim::SimulatedDrive icla_sim{sim::DriveSimConfig{2, sim::DriveProfile::kIcla, 1.0, -800}, bus.sender(iport),
+                               clock.fn()};
+  std::vector<Reported> reports;
+  std::unique_ptr<DriveController> ctl;
+
+  void SetUp() override {
+    epos_sim.power_on();
+    icla_sim.power_on();
+    bus.deliver();
+  }
+  void make(ControllerConfig c = robot_config()) {
+    ctl = std::make_unique<DriveController>(master, c, [this](module::Severity s, module::ErrorType, int n,
+                                                              std::string t) {
+      reports.push_back({s, n, std::move(t)});
+    });
+  }
+  // Boots both drives; true when start() reported success.
+  bool start(ControllerConfig c = robot_config()) {
+    make(c);
+    std::optional<bool> ok;
+    ctl->start([&](bool r, const std::string& why) {
+      ok = r;
+      if (!r) start_error = why;
+    });
+    for (int i = 0; i < 5000 && !ok; ++i) tick();
+    run(50ms);  // enable
+    return ok.value_or(false);
+  }
+  std::string start_error;
+  void tick() {
+    clock.advance(1ms);
+    master.poll();
+    epos_sim.poll();
+    icla_sim.poll();
+    bus.deliver();
+  }
+  void run(canopen::Duration d) {
+    for (auto n = std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); n > 0; --n) tick();
+  }
+  // Commands every 100 ms for `d`, as the planner does at 10 Hz.
+  void stream(double v, double s, canopen::Duration d) {
+    for (auto t = 0ms; t < d; t += 100ms) {
+      ctl->motion(v, s);
+      run(100ms);
+    }
+  }
+  int count(int number) const {
+    int n = 0;
+    for (const auto& r : reports) n += r.number == number;
+    return n;
+  }
+  // Frames on RPDO4 of the EPOS (0x501) whose controlword is quick stop.
+  int quick_stop_frames() const {
+    int n = 0;
+    for (const auto& f : bus.log())
+      if (f.id == 0x501 && f.len >= 2 && (f.data[0] & 0x87) == 0x02) ++n;
+    return n;
+  }
+  bool home() {
+    ctl->home_steering();
+    for (int i = 0; i < 10000 && !ctl->steering_homed(); ++i) tick();
+    run(20ms);
+    return ctl->steering_homed();
+  }
+};
+
+TEST_F(ControllerTest, BootsEposInProfileVelocityAndIclaInProfilePositionBothEnabled) {
+  ASSERT_TRUE(start()) << start_error;
+  EXPECT_TRUE(ctl->ready());
+  EXPECT_EQ(epos_sim.od().get<std::int8_t>(0x6061), 3);
+  EXPECT_EQ(icla_sim.od().get<std::int8_t>(0x6061), 1);
+  EXPECT_EQ(epos_sim.state(), State::kOperationEnabled);
+  EXPECT_EQ(icla_sim.state(), State::kOperationEnabled);
+  EXPECT_EQ(epos_sim.od().get<std::uint32_t>(0x6085), 20000u);
+  const auto s = ctl->status();
+  EXPECT_EQ(s.drives[0].state, "operation enabled");
+  EXPECT_EQ(s.drives[1].state, "operation enabled");
+  EXPECT_EQ(s.drives[0].node, 1);
+  EXPECT_EQ(s.drives[1].node, 2);
+  EXPECT_FALSE(s.drives[1].homed);
+  EXPECT_FALSE(s.stopped) << s.stop_reason;
+  EXPECT_EQ(count(kErrBooted), 2);
+}
+
+TEST_F(ControllerTest, SpeedBecomesMotorRpmThroughTheGearAndWheelAndComesBackAsMetresPerSecond) {
+  ASSERT_TRUE(start());
+  stream(1.0, 0, 500ms);
+  // 1 m/s on a 0.125 m wheel = 1.2732 rev/s = 76.39 rpm at the wheel, x26 = 1986 rpm.
+  EXPECT_EQ(epos_sim.od().get<std::int32_t>(0x60FF), 1986);
+  EXPECT_NEAR(ctl->status().speed_mps, 1.0, 1e-3);
+  EXPECT_DOUBLE_EQ(ctl->status().cmd_speed_mps, 1.0);
+  stream(-0.3, 0, 500ms);
+  EXPECT_EQ(epos_sim.od().get<std::int32_t>(0x60FF), -596);  // 595.8
+  EXPECT_NEAR(ctl->status().speed_mps, -0.3, 1e-3);
+}
+
+TEST_F(ControllerTest, SpeedBeyondTheLimitIsClampedWithOneWarning) {
+  auto c = robot_config();
+  c.max_speed_mps = 1.5;
+  ASSERT_TRUE(start(c));
+  stream(3.0, 0, 300ms);
+  EXPECT_EQ(epos_sim.od().get<std::int32_t>(0x60FF), 2979);  // 1.5 m/s
+  EXPECT_EQ(count(kErrClamped), 1) << "one warning per episode, not one per command";
+}
+
+TEST_F(ControllerTest, SteeringIsRefusedUntilHomedThenFollowsInTenThousandUnitsPerRadian) {
+  ASSERT_TRUE(start());
+  stream(0.2, 0.1, 500ms);
+  EXPECT_EQ(count(kErrNotHomed), 1);
+  EXPECT_EQ(icla_sim.od().get<std::int32_t>(0x607A), 0) << "no steering target before homing";
+  EXPECT_NEAR(ctl->status().speed_mps, 0.2, 1e-3) << "propulsion is not gated by homing";
+
+  ASSERT_TRUE(home());
+  EXPECT_EQ(icla_sim.od().get<std::int8_t>(0x6098), 19);
+  EXPECT_EQ(icla_sim.od().get<std::int8_t>(0x6061), 1) << "back in profile position";
+  EXPECT_NEAR(ctl->status().steering_rad, 0.0, 1e-4) << "0 = straight ahead after homing";
+  EXPECT_TRUE(ctl->status().drives[1].homed);
+
+  stream(0.2, 0.1, 800ms);
+  EXPECT_EQ(icla_sim.od().get<std::int32_t>(0x607A), 1000);
+  EXPECT_NEAR(ctl->status().steering_rad, 0.1, 1e-4);
+  stream(0.2, -0.25, 800ms);
+  EXPECT_NEAR(ctl->status().steering_rad, -0.25, 1e-4);
+  EXPECT_DOUBLE_EQ(ctl->status().cmd_steering_rad, -0.25);
+  EXPECT_EQ(count(kErrNotHomed), 1);
+}
+
+TEST_F(ControllerTest, SteeringBeyondThirtyDegreesIsClampedWithAWarning) {
+  ASSERT_TRUE(start());
+  ASSERT_TRUE(home());
+  stream(0, 1.0, 800ms);
+  EXPECT_EQ(icla_sim.od().get<std::int32_t>(0x607A), 5236);  // 30 deg = 0.5236 rad
+  EXPECT_NEAR(ctl->status().steering_rad, 30.0 * std::numbers::pi / 180.0, 1e-4);
+  stream(0, -2.0, 1200ms);
+  EXPECT_EQ(icla_sim.od().get<std::int32_t>(0x607A), -5236);
+  EXPECT_EQ(count(kErrClamped), 1) << "one episode of clamping";
+  stream(0, 0.1, 800ms);
+  stream(0, 0.9, 800ms);
+  EXPECT_EQ(count(kErrClamped), 2) << "a new episode warns again";
+}
+
+TEST_F(ControllerTest, OneSecondWithoutCommandsQuickStopsThePropulsionAndTheNextCommandResumes) {
+  ASSERT_TRUE(start());
+  stream(0.5, 0, 2000ms);  // 10 Hz for 2 s: never a quick stop
+  EXPECT_EQ(quick_stop_frames(), 0);
+  EXPECT_EQ(epos_sim.state(), State::kOperationEnabled);
+  ctl->motion(0.5, 0);
+  run(990ms);
+  EXPECT_EQ(quick_stop_frames(), 0) << "not before the timeout";
+  EXPECT_EQ(epos_sim.state(), State::kOperationEnabled);
+  run(20ms);
+  EXPECT_GE(quick_stop_frames(), 1) << "quick-stop controlword to node 1";
+  EXPECT_EQ(epos_sim.state(), State::kQuickStopActive);
+  EXPECT_EQ(count(kErrCommandTimeout), 1);
+  run(500ms);
+  EXPECT_NEAR(ctl->status().speed_mps, 0.0, 1e-6);
+  auto s = ctl->status();
+  EXPECT_TRUE(s.stopped);
+  EXPECT_EQ(s.stop_reason, "command timeout");
+  EXPECT_DOUBLE_EQ(s.cmd_speed_mps, 0.0);
+  run(3000ms);
+  EXPECT_EQ(count(kErrCommandTimeout), 1) << "reported once per silence";
+
+  stream(0.3, 0, 500ms);
+  EXPECT_EQ(epos_sim.state(), State::kOperationEnabled);
+  EXPECT_NEAR(ctl->status().speed_mps, 0.3, 1e-3);
+  EXPECT_FALSE(ctl->status().stopped);
+}
+
+TEST_F(ControllerTest, ConfiguredTimeoutIsUsed) {
+  auto c = robot_config();
+  c.command_timeout = 300ms;
+  ASSERT_TRUE(start(c));
+  ctl->motion(0.5, 0);
+  run(290ms);
+  EXPECT_EQ(quick_stop_frames(), 0);
+  run(20ms);
+  EXPECT_GE(quick_stop_frames(), 1);
+}
+
+TEST_F(ControllerTest, StopEventQuickStopsAndHoldsUntilReleased) {
+  ASSERT_TRUE(start());
+  ASSERT_TRUE(home());
+  stream(0.5, 0.1, 500ms);
+  ctl->stop_event(true);
+  run(300ms);
+  EXPECT_EQ(epos_sim.state(), State::kQuickStopActive);
+  EXPECT_EQ(icla_sim.state(), State::kQuickStopActive);
+  EXPECT_EQ(ctl->status().stop_reason, "LL_EVENT_STOP");
+  stream(0.5, 0.2, 1000ms);  // commands keep coming: refused
+  EXPECT_NEAR(epos_sim.velocity(), 0.0, 1e-9);
+  EXPECT_EQ(epos_sim.state(), State::kQuickStopActive);
+  EXPECT_EQ(count(kErrRefused), 1);
+  ctl->stop_event(false);
+  run(200ms);
+  EXPECT_EQ(epos_sim.state(), State::kQuickStopActive) << "release alone does not move";
+  stream(0.4, 0.2, 800ms);
+  EXPECT_EQ(epos_sim.state(), State::kOperationEnabled);
+  EXPECT_NEAR(ctl->status().speed_mps, 0.4, 1e-3);
+  EXPECT_NEAR(ctl->status().steering_rad, 0.2, 1e-4);
+}
+
+TEST_F(ControllerTest, PauseStopsTheDrivesAndSendsNothingUntilRun) {
+  ASSERT_TRUE(start());
+  stream(0.5, 0, 500ms);
+  ctl->pause();
+  run(300ms);
+  EXPECT_EQ(epos_sim.state(), State::kQuickStopActive);
+  EXPECT_EQ(ctl->status().stop_reason, "module paused");
+  const auto rpdos = epos_sim.rpdos_received();
+  stream(0.5, 0, 1500ms);
+  EXPECT_EQ(epos_sim.rpdos_received(), rpdos) << "no frame to the EPOS while paused";
+  EXPECT_EQ(count(kErrCommandTimeout), 0) << "a paused module does not time out";
+  ctl->resume();
+  stream(0.25, 0, 500ms);
+  EXPECT_EQ(epos_sim.state(), State::kOperationEnabled);
+  EXPECT_NEAR(ctl->status().speed_mps, 0.25, 1e-3);
+}
+
+TEST_F(ControllerTest, HomingIsRefusedWhileStopped) {
+  ASSERT_TRUE(start());
+  ctl->stop_event(true);
+  run(100ms);
+  ctl->home_steering();
+  run(2000ms);
+  EXPECT_FALSE(ctl->steering_homed());
+  EXPECT_EQ(count(kErrRefused), 1);
+}
+
+TEST_F(ControllerTest, HomeOnStartHomesTheSteering) {
+  auto c = robot_config();
+  c.home_on_start = true;
+  ASSERT_TRUE(start(c));
+  for (int i = 0; i < 5000 && !ctl->steering_homed(); ++i) tick();
+  EXPECT_TRUE(ctl->steering_homed());
+}
+
+TEST_F(ControllerTest, EmcyAndFaultAreReportedAndTheNextCommandResetsTheFault) {
+  ASSERT_TRUE(start());
+  stream(0.5, 0, 300ms);
+  epos_sim.inject_fault(0x4210);
+  run(300ms);
+  EXPECT_EQ(count(kErrEmcy), 1);
+  EXPECT_EQ(count(kErrFault), 1);
+  auto s = ctl->status();
+  EXPECT_TRUE(s.drives[0].fault);
+  EXPECT_EQ(s.drives[0].error_code, 0x4210);
+  EXPECT_EQ(s.drives[0].state, "fault");
+  EXPECT_TRUE(s.stopped);
+  EXPECT_EQ(s.stop_reason, "fault");
+  stream(0.3, 0, 800ms);
+  EXPECT_EQ(epos_sim.state(), State::kOperationEnabled);
+  EXPECT_NEAR(ctl->status().speed_mps, 0.3, 1e-3);
+  EXPECT_FALSE(ctl->status().drives[0].fault);
+}
+
+TEST_F(ControllerTest, HeartbeatLossIsReportedAndStopsThePropulsionWhenTheSteeringGoes) {
+  ASSERT_TRUE(start());
+  stream(0.5, 0, 500ms);
+  icla_sim.faults().heartbeat_silent = true;
+  run(500ms);
+  EXPECT_EQ(count(kErrHeartbeatLost), 1);
+  EXPECT_EQ(ctl->status().drives[1].state, "offline");
+  EXPECT_EQ(epos_sim.state(), State::kQuickStopActive);
+  EXPECT_EQ(ctl->status().stop_reason, "drive offline");
+  icla_sim.faults().heartbeat_silent = false;
+  run(300ms);
+  EXPECT_EQ(count(kErrHeartbeatResumed), 1);
+  stream(0.3, 0, 800ms);
+  EXPECT_NEAR(ctl->status().speed_mps, 0.3, 1e-3);
+}
+
+TEST_F(ControllerTest, ARebootedDriveIsBootedAgainAndMovesOnTheNextCommand) {
+  ASSERT_TRUE(start());
+  ASSERT_TRUE(home());
+  stream(0.5, 0, 300ms);
+  icla_sim.power_on();  // boot-up message: its configuration is gone
+  run(1000ms);
+  EXPECT_EQ(count(kErrRebooted), 1);
+  EXPECT_EQ(count(kErrBooted), 3);
+  EXPECT_FALSE(ctl->steering_homed()) << "a rebooted IclA lost its reference";
+  EXPECT_EQ(icla_sim.state(), State::kOperationEnabled);
+  EXPECT_EQ(icla_sim.od().get<std::int8_t>(0x6061), 1);
+  EXPECT_EQ(epos_sim.state(), State::kQuickStopActive) << "propulsion stops when the steering reboots";
+
+  epos_sim.power_on();
+  run(1000ms);
+  EXPECT_EQ(count(kErrRebooted), 2);
+  EXPECT_EQ(count(kErrBooted), 4);
+  EXPECT_EQ(epos_sim.od().get<std::int8_t>(0x6061), 3);
+  stream(0.3, 0, 800ms);
+  EXPECT_NEAR(ctl->status().speed_mps, 0.3, 1e-3);
+  EXPECT_EQ(ctl->status().drives[0].state, "operation enabled");
+}
+
+TEST_F(ControllerTest, ADriveThatDoesNotAnswerFailsTheStartNamingIt) {
+  bus.mute(iport, true);
+  EXPECT_FALSE(start());
+  EXPECT_NE(start_error.find("icla"), std::string::npos) << start_error;
+  EXPECT_EQ(count(kErrBoot), 1);
+  EXPECT_FALSE(ctl->ready());
+}
+
+TEST_F(ControllerTest, StatusBecomesLlDataDrives) {
+  ASSERT_TRUE(start());
+  stream(0.5, 0, 500ms);
+  const auto m = drives_message(ctl->status());
+  ASSERT_EQ(m.num_drives, 2);
+  ASSERT_EQ(m.axis.size(), 2u);
+  EXPECT_EQ(m.axis[0], lowlevel::data_drives_t::AXIS_PROPULSION);
+  EXPECT_EQ(m.axis[1], lowlevel::data_drives_t::AXIS_STEERING);
+  EXPECT_EQ(m.node[0], 1);
+  EXPECT_EQ(m.node[1], 2);
+  EXPECT_EQ(m.state[0], "operation enabled");
+  EXPECT_NEAR(m.speed_mps, 0.5, 1e-3);
+  EXPECT_DOUBLE_EQ(m.cmd_speed_mps, 0.5);
+  EXPECT_FALSE(m.stopped);
+  EXPECT_EQ(m.stop_reason, "");
+  // It encodes (the arrays match num_drives).
+  std::vector<std::uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
+  EXPECT_EQ(m.encode(buf.data(), 0, static_cast<int>(buf.size())), static_cast<int>(buf.size()));
+}
+
+}  // namespace
+}  // namespace advee::driver_canbus
