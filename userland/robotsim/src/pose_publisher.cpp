@@ -10,9 +10,11 @@
 
 namespace advee::robotsim {
 
-PosePublisher::PosePublisher(const std::string& url) : lcm_(std::make_unique<lcm::LCM>(url)) {
+PosePublisher::PosePublisher(const std::string& url) : owned_(std::make_unique<lcm::LCM>(url)), lcm_(owned_.get()) {
   if (!lcm_->good()) throw std::runtime_error("LCM: cannot open '" + (url.empty() ? "default URL" : url) + "'");
 }
+
+PosePublisher::PosePublisher(lcm::LCM& lcm) : lcm_(&lcm) {}
 
 PosePublisher::~PosePublisher() = default;
 

@@ -23,6 +23,8 @@ class PosePublisher {
   // `url` empty: LCM's default (LCM_DEFAULT_URL); throws std::runtime_error
   // when LCM cannot be set up.
   explicit PosePublisher(const std::string& url);
+  // Publishes through `lcm`, which must outlive the publisher (tests: memq://).
+  explicit PosePublisher(lcm::LCM& lcm);
   ~PosePublisher();
   PosePublisher(const PosePublisher&) = delete;
   PosePublisher& operator=(const PosePublisher&) = delete;
@@ -30,7 +32,8 @@ class PosePublisher {
   void publish(const Robot& robot);
 
  private:
-  std::unique_ptr<lcm::LCM> lcm_;
+  std::unique_ptr<lcm::LCM> owned_;
+  lcm::LCM* lcm_;
 };
 
 }  // namespace advee::robotsim
