@@ -103,7 +103,7 @@ class ControllerTest : public testing::Test {
   int quick_stop_frames() const {
     int n = 0;
     for (const auto& f : bus.log())
-      if (f.id == 0x501 && f.len >= 2 && (f.data[0] & 0x87) == 0x02) ++n;
+      if (f.id == 0x501 && f.len >= 2 && (f.data[0] & 0x86) == 0x02) ++n;
     return n;
   }
   bool home() {

@@ -6,7 +6,10 @@
 //   active-beacons ID...        publish LL_DATA_ACTIVE_BEACONS
 //   power output N on|off | power poweroff | power reboot     publish LL_CMD_POWER
 //   motion SPEED_MPS STEER_RAD HZ SECONDS                     publish LL_CMD_MOTION at HZ
+//                               (then prints "last_utime=US", CLOCK_REALTIME of the last one)
 //   homing                      publish LL_CMD_HOMING (steering)
+//   stop on|off                 publish LL_EVENT_STOP (stop=1|0, source DIO)
+// LL_DATA_DRIVES and CM_DATA_ERROR are decoded too (spaces in texts become '_').
 #include <poll.h>
 
 #include <chrono>
@@ -19,11 +22,13 @@
 #include <thread>
 #include <vector>
 
+#include "common/error_t.hpp"
 #include "lowlevel/cmd_homing_t.hpp"
 #include "lowlevel/cmd_motion_t.hpp"
 #include "lowlevel/cmd_power_t.hpp"
 #include "lowlevel/data_active_beacons_t.hpp"
 #include "lowlevel/data_beacons_t.hpp"
+#include "lowlevel/data_drives_t.hpp"
 #include "lowlevel/data_odo_t.hpp"
 #include "lowlevel/data_power_t.hpp"
 #include "lowlevel/data_srfs_t.hpp"
@@ -52,6 +57,13 @@ std::string num(double v, const char* fmt = "%.4f") {
   return b;
 }
 
+// One token for a key=value line.
+std::string word(std::string s) {
+  for (char& c : s)
+    if (c == ' ' || c == '\n' || c == '\t') c = '_';
+  return s.empty() ? "-" : s;
+}
+
 std::string describe(const lcm::ReceiveBuffer* rb, const std::string& ch) {
   std::ostringstream o;
   o << ch << " t=" << num(mono_s(), "%.3f");
@@ -74,6 +86,17 @@ std::string describe(const lcm::ReceiveBuffer* rb, const std::string& ch) {
   } else if (lowlevel::event_stop_t s; ch == "LL_EVENT_STOP" && decode(rb, s)) {
     o << " module=" << s.module << " stop=" << int(s.stop) << " source=" << int(s.source)
       << " age_us=" << (utime() - s.utime) << " rx_us=" << utime();
+  } else if (lowlevel::data_drives_t d; ch == "LL_DATA_DRIVES" && decode(rb, d)) {
+    o << " module=" << d.module << " speed=" << num(d.speed_mps) << " steer=" << num(d.steering_rad)
+      << " cmd_speed=" << num(d.cmd_speed_mps) << " cmd_steer=" << num(d.cmd_steering_rad)
+      << " stopped=" << int(d.stopped) << " reason=" << word(d.stop_reason) << " drives=" << d.num_drives;
+    for (int i = 0; i < d.num_drives; ++i)
+      o << " node" << int(d.node[i]) << "=" << word(d.state[i]) << " fault" << int(d.node[i]) << "="
+        << int(d.fault[i]) << " emcy" << int(d.node[i]) << "=" << d.error_code[i] << " homed" << int(d.node[i])
+        << "=" << int(d.homed[i]);
+  } else if (common::error_t e; ch == "CM_DATA_ERROR" && decode(rb, e)) {
+    o << " module=" << e.module << " number=" << e.number << " severity=" << int(e.severity)
+      << " fatal=" << int(e.fatal) << " text=" << word(e.text);
   } else {
     o << " bytes=" << rb->data_size;
   }
@@ -86,7 +109,8 @@ struct Printer {
 
 int usage() {
   std::cerr << "usage: advee-daemons-probe listen SECONDS CHANNEL... | active-beacons ID... |\n"
-               "       power output N on|off | power poweroff|reboot | motion SPEED STEER HZ SECONDS | homing\n";
+               "       power output N on|off | power poweroff|reboot | motion SPEED STEER HZ SECONDS | homing |\n"
+               "       stop on|off\n";
   return 2;
 }
 
@@ -145,11 +169,14 @@ int main(int argc, char** argv) {
       m.steering_rad = std::stod(a[1]);
       const double hz = std::stod(a[2]);
       const double end = mono_s() + std::stod(a[3]);
+      std::int64_t last = 0;
       while (mono_s() < end) {
         m.utime = utime();
         if (lcm.publish("LL_CMD_MOTION", &m) != 0) return 3;
+        last = m.utime;
         std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / hz));
       }
+      std::cout << "last_utime=" << last << std::endl;
       return 0;
     }
     if (cmd == "homing" && a.empty()) {
@@ -158,6 +185,14 @@ int main(int argc, char** argv) {
       m.module = "daemons-probe";
       m.axis = lowlevel::cmd_homing_t::AXIS_STEERING;
       return lcm.publish("LL_CMD_HOMING", &m) == 0 ? 0 : 3;
+    }
+    if (cmd == "stop" && a.size() == 1 && (a[0] == "on" || a[0] == "off")) {
+      lowlevel::event_stop_t m{};
+      m.utime = utime();
+      m.module = "daemons-probe";
+      m.stop = a[0] == "on";
+      m.source = lowlevel::event_stop_t::SOURCE_DIO;
+      return lcm.publish("LL_EVENT_STOP", &m) == 0 ? 0 : 3;
     }
   } catch (const std::exception& e) {
     std::cerr << "advee-daemons-probe: " << e.what() << "\n";
