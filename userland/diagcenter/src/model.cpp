@@ -19,7 +19,7 @@ bool decode_into(const void* data, std::size_t size, Msg& m) {
 
 template <typename Msg>
 bool take(Latest<Msg>& slot, const void* data, std::size_t size, double now) {
-  Msg m;
+  Msg m{};
   if (!decode_into(data, size, m)) return false;
   slot.msg = std::move(m);
   slot.at = now;
@@ -56,7 +56,7 @@ bool Model::handle(const std::string& ch, const void* data, std::size_t size, do
   bool ok = false;
   bool known = true;
   if (ch == msgs::kDataState.name) {
-    common::data_state_t s;
+    common::data_state_t s{};
     if ((ok = decode_into(data, size, s))) {
       auto& m = module_named(s.module);
       m.state = module::state_from_wire(s.state);
@@ -65,7 +65,7 @@ bool Model::handle(const std::string& ch, const void* data, std::size_t size, do
       m.state_at = now;
     }
   } else if (ch == msgs::kDataModules.name) {
-    common::data_module_phase_t p;
+    common::data_module_phase_t p{};
     if ((ok = decode_into(data, size, p))) {
       auto& m = module_named(p.target);
       m.phase = p.phase;
@@ -109,7 +109,7 @@ bool Model::handle(const std::string& ch, const void* data, std::size_t size, do
   } else if (ch == msgs::kCmdState.name || ch == msgs::kDataActiveBeacons.name) {
     ok = true;  // seen (counts as traffic); nothing of it is shown
   } else if (ch == kSimPoseChannel) {
-    sim::data_pose_t p;
+    sim::data_pose_t p{};
     if ((ok = decode_into(data, size, p))) {
       true_pose_.x_m = p.x_m;
       true_pose_.y_m = p.y_m;

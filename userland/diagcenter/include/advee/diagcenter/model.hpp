@@ -70,7 +70,7 @@ struct ModuleInfo {
 
 struct ErrorEntry {
   double at = kNever;
-  common::error_t msg;
+  common::error_t msg{};
 };
 
 // Ground truth of the simulated robot (SIM_DATA_POSE), when the simulator publishes it.
