@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-2.0
+#include "advee/web/lcm_source.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+#include <stdexcept>
+
+#include "advee/web/message_json.hpp"
+
+namespace advee::web {
+
+LcmSource::LcmSource(const std::string& url, const std::vector<std::string>& channels, Sink sink)
+    : lcm_(std::make_unique<lcm::LCM>(url)), sink_(std::move(sink)) {
+  if (!lcm_->good()) throw std::runtime_error("cannot set up LCM" + (url.empty() ? "" : " for " + url));
+  // LCM anchors the (regular expression) name; ours are plain words.
+  for (const auto& ch : channels) lcm_->subscribeFunction(ch, &LcmSource::on_message, this);
+  thread_ = std::jthread([this](std::stop_token st) { run(st); });
+}
+
+LcmSource::~LcmSource() {
+  thread_.request_stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+void LcmSource::on_message(const lcm::ReceiveBuffer* rb, const std::string& channel,
+                           LcmSource* self) {
+  ++self->received_;
+  auto j = message_to_json(channel, rb->data, rb->data_size);
+  if (!j) {
+    ++self->undecodable_;
+    return;
+  }
+  self->sink_(replace_key(*j), j->dump());
+}
+
+void LcmSource::run(std::stop_token stop) {
+  while (!stop.stop_requested()) {
+    if (lcm_->handleTimeout(100) < 0) {
+      failed_ = true;
+      return;
+    }
+  }
+}
+
+}  // namespace advee::web

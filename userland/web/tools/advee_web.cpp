@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: GPL-2.0
+// advee-web: the live dashboard of the low level in a browser. Subscribes to
+// every LCM channel, forwards each message as JSON over WebSocket and serves
+// the page on the same port. docs/web-dashboard.md describes it.
+#include <CLI/CLI.hpp>
+#include <asio/io_context.hpp>
+#include <asio/post.hpp>
+#include <asio/signal_set.hpp>
+#include <asio/steady_timer.hpp>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include "advee/web/bridge_server.hpp"
+#include "advee/web/lcm_source.hpp"
+#include "advee/web/message_json.hpp"
+#include "advee/web/scene.hpp"
+
+#ifndef ADVEE_WEB_DATADIR
+#define ADVEE_WEB_DATADIR "/usr/share/advee/web"
+#endif
+#ifndef ADVEE_ROBOTSIM_SYSCONFDIR
+#define ADVEE_ROBOTSIM_SYSCONFDIR "/etc/advee/robotsim"
+#endif
+
+namespace {
+
+void log_line(const std::string& s) { std::cerr << "advee-web: " << s << std::endl; }
+
+// HOST:PORT, HOST may be an IPv6 address in brackets.
+bool split_listen(const std::string& s, std::string& host, std::uint16_t& port) {
+  const auto colon = s.rfind(':');
+  if (colon == std::string::npos || colon + 1 == s.size()) return false;
+  host = s.substr(0, colon);
+  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  try {
+    std::size_t used = 0;
+    const unsigned long p = std::stoul(s.substr(colon + 1), &used);
+    if (used != s.size() - colon - 1 || p > 65535) return false;
+    port = static_cast<std::uint16_t>(p);
+  } catch (const std::exception&) {
+    return false;
+  }
+  return !host.empty();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "advee-web: the Advee low level live in a browser.\n"
+      "Subscribes to every LCM channel of the robot (CM_*, LL_*) and to robot-sim's\n"
+      "ground truth SIM_DATA_POSE, converts each message to JSON\n"
+      "{\"channel\":..,\"utime\":..,<fields>} and pushes it to every WebSocket client;\n"
+      "serves the dashboard page (--root) and /scene.json (the robot outline, sensor\n"
+      "positions and room from robot-sim's --robot and --map files) over HTTP on the\n"
+      "same port. Open http://HOST:PORT/ in a browser.\n\n"
+      "A slow client never makes the bridge grow: while its socket holds more than\n"
+      "--max-buffered bytes unsent, only the newest message per channel (and module)\n"
+      "waits for it; replaced ones are counted as dropped and shown on the page.\n\n"
+      "Signals: SIGINT, SIGTERM close every connection and exit 0.\n"
+      "Exit codes: 0 stopped by a signal, 1 LCM or the listening socket could not be set\n"
+      "up or LCM failed while running, 2 bad command line.",
+      "advee-web"};
+  std::string listen = "127.0.0.1:8080";
+  std::string root = ADVEE_WEB_DATADIR;
+  std::string lcm_url;
+  std::string robot_file = std::string(ADVEE_ROBOTSIM_SYSCONFDIR) + "/robot.yaml";
+  std::string map_file = std::string(ADVEE_ROBOTSIM_SYSCONFDIR) + "/room.yaml";
+  std::size_t max_buffered = 256 * 1024;
+  app.add_option("--listen", listen, "HOST:PORT for HTTP and WebSocket; 0.0.0.0:PORT for every "
+                                     "interface (a VM's port forwarding needs that); PORT 0 picks a free "
+                                     "port and prints it")
+      ->capture_default_str();
+  app.add_option("--root", root, "directory of the page (index.html, dashboard.js, dashboard.css)")
+      ->capture_default_str();
+  app.add_option("--lcm", lcm_url, "LCM URL, e.g. udpm://239.255.76.67:7667?ttl=0 (default: "
+                                   "LCM_DEFAULT_URL, else LCM's default group)");
+  app.add_option("--robot", robot_file, "robot-sim robot file: outline, range finder and beacon "
+                                        "scanner positions; \"\" = none")
+      ->capture_default_str();
+  app.add_option("--map", map_file, "robot-sim map file: walls, obstacles, beacons; \"\" = none")
+      ->capture_default_str();
+  app.add_option("--max-buffered", max_buffered, "bytes unsent on one client's socket beyond which "
+                                                 "its messages are coalesced")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{1024}, std::size_t{64} << 20));
+  CLI11_PARSE(app, argc, argv);
+
+  advee::web::BridgeOptions opt;
+  if (!split_listen(listen, opt.address, opt.port)) {
+    std::cerr << "advee-web: --listen " << listen << ": expected HOST:PORT\n";
+    return 2;
+  }
+  opt.root = root;
+  opt.max_buffered_bytes = max_buffered;
+  const auto scene = advee::web::load_scene(robot_file, map_file);
+  if (scene.contains("errors"))
+    for (const auto& e : scene["errors"]) log_line("scene: " + e.get<std::string>());
+  opt.scene_json = scene.dump();
+
+  asio::io_context io;
+  std::optional<advee::web::BridgeServer> server;
+  std::optional<advee::web::LcmSource> source;
+  try {
+    server.emplace(io, opt, log_line);
+    // Messages are decoded on the LCM thread and sent on the io thread.
+    source.emplace(lcm_url, advee::web::bridged_channels(),
+                   [&io, &server](std::string key, std::string payload) {
+                     asio::post(io, [&server, k = std::move(key), p = std::move(payload)] {
+                       if (server) server->broadcast(k, p);
+                     });
+                   });
+  } catch (const std::exception& e) {
+    log_line(e.what());
+    return 1;
+  }
+  log_line("serving " + root + " on http://" + opt.address + ":" + std::to_string(server->port()) + "/");
+
+  int status = 0;
+  asio::steady_timer grace(io), health(io);
+  auto stop = [&] {
+    source.reset();  // joins the LCM thread: no more posts
+    server->shutdown();
+    // Closing handshakes get one second; then the loop ends regardless.
+    grace.expires_after(std::chrono::seconds(1));
+    grace.async_wait([&io](const std::error_code&) { io.stop(); });
+    health.cancel();
+  };
+  asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](const std::error_code& ec, int sig) {
+    if (ec) return;
+    log_line(std::string("signal ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") + ": stopping");
+    stop();
+  });
+  std::function<void()> watch_lcm = [&] {
+    health.expires_after(std::chrono::milliseconds(500));
+    health.async_wait([&](const std::error_code& ec) {
+      if (ec || !source) return;
+      if (source->failed()) {
+        log_line("LCM receive failed");
+        status = 1;
+        signals.cancel();
+        stop();
+        return;
+      }
+      watch_lcm();
+    });
+  };
+  watch_lcm();
+  io.run();
+  const auto st = server->stats();
+  log_line("stopped: " + std::to_string(st.messages) + " messages, " + std::to_string(st.dropped) +
+      " dropped for slow clients");
+  return status;
+}
