@@ -20,6 +20,8 @@
 #              (default: the host's; make modules_install INSTALL_MOD_PATH=DIR)
 #   --run PROG run this one program (path on the host) instead of the suites,
 #              and print its output (used by make demo)
+#   --interactive  with --run: the VM's console is this terminal and the program
+#              has no time limit (it opens /dev/ttyS0 itself: make demo's TUI)
 # Environment: VMTEST_VERBOSE=1 streams the guest console; VMTEST_SMP, VMTEST_MEM;
 #   VMTEST_SLOWDOWN=N multiplies every program timeout and the boot allowance
 #   (a slower kernel: the debug lane); VMTEST_APPEND adds kernel parameters.
@@ -29,7 +31,7 @@ TOP=$(cd "$(dirname "$0")/../.." && pwd)
 . "$TOP/scripts/lib.sh"
 . "$TOP/tests/harness/lib-host.sh"
 
-tests=() shell=0 kver= kernel= modules= lane=x86_64 run= modbase=
+tests=() shell=0 interactive=0 kver= kernel= modules= lane=x86_64 run= modbase=
 while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=("$2"); shift 2 ;;
@@ -40,7 +42,8 @@ while [ $# -gt 0 ]; do
 	--lane) lane=$2; shift 2 ;;
 	--modroot) modbase=$(readlink -f "$2"); shift 2 ;;
 	--run) run=$(readlink -f "$2"); shift 2 ;;
-	-h|--help) sed -n '3,27p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	--interactive) interactive=1; shift ;;
+	-h|--help) sed -n '3,29p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-x86.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
@@ -99,7 +102,7 @@ rm -rf "$results"
 mkdir -p "$results"
 cp "$modules" "$results/modules.list"
 if [ -n "$run" ]; then
-	echo "main $(basename "$run" .sh) $run 300" >"$results/tests.list"
+	echo "main $(basename "$run" .sh) $run $([ "$interactive" = 1 ] && echo 604800 || echo 300)" >"$results/tests.list"
 else
 	list_tests x86_64 "$BUILD/tests/x86_64" "${tests[@]}" >"$results/tests.list"
 fi
@@ -134,6 +137,10 @@ qemu=(qemu-system-x86_64 -machine pc -accel tcg -cpu "${VMTEST_CPU:-max}" -smp "
 	-virtfs "local,path=$TOP,mount_tag=repo,security_model=none,readonly=on,multidevs=remap")
 append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.repo=$TOP vmtest.runner=$TOP/tests/harness/guest-run.sh${VMTEST_APPEND:+ $VMTEST_APPEND}"
 
+if [ -n "$run" ] && [ "$interactive" = 1 ]; then
+	say "the guest's program gets this terminal; Ctrl-a x stops the VM"
+	exec "${qemu[@]}" -append "$append"
+fi
 start=$(date +%s)
 boot_vm "$shell" $((60 * slowdown)) "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
 if [ -n "$run" ]; then
