@@ -7,7 +7,9 @@
 #                        userland and static test programs for both
 #   make check           everything the README's test command runs (see docs/testing.md)
 #   make check TEST=name one VM test (suite or suite/program) on the x86_64 lane
-#   make demo            the main job: boot the VM with the project's modules
+#   make demo            the main job: the robot's low level on the simulated
+#                        robot in the VM, diagnostic_center on this terminal
+#                        (FOR=30s: non-interactive, a text summary every 5 s)
 #   make deps            install what this machine lacks (idempotent)
 #   make gates           W=1 + checkpatch --strict + sparse on the kernel sources
 #   make unit            CTest (plain and ASan/UBSan)
@@ -48,7 +50,7 @@ endif
 all: modules userland testprogs
 
 help:
-	@sed -n '3,23p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,25p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@$(TOP)/scripts/deps.sh
@@ -113,7 +115,7 @@ dkms-source:
 	@$(TOP)/scripts/install.sh --dkms-source-only $(if $(DESTDIR),--destdir "$(DESTDIR)")
 
 demo:
-	@$(TOP)/scripts/demo.sh
+	@$(TOP)/scripts/demo.sh $(if $(FOR),--for "$(FOR)")
 
 clean:
 	rm -rf $(BUILD)

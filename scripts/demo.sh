@@ -1,12 +1,49 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# demo.sh: the main job (README, first command). Installs what is missing,
-# builds the project's modules and boots the x86_64 VM with them: the guest
-# loads every module, prints what it registered and unloads it again. Later
-# issues turn this into the whole stack running on the simulated robot.
+# demo.sh: the main job (README, first command; docs/demo.md). Installs what
+# is missing, builds the kernel modules and the user space, boots the x86_64
+# VM and runs the whole low level of the robot there on the simulated robot
+# (tests/harness/demo-guest.sh):
+#
+#   scripts/demo.sh              diagnostic_center's terminal UI on this
+#                                terminal (the VM's serial console); q quits
+#                                it and the VM powers off (Ctrl-a x kills it)
+#   scripts/demo.sh --for 30s    non-interactive: the robot drives the scripted
+#                                path, diagnostic_center --text prints a
+#                                summary every 5 s; exit 0 when all went well
+#                                (`make demo FOR=30s`)
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
+
+for_=
+while [ $# -gt 0 ]; do
+	case $1 in
+	--for) for_=$2; shift 2 ;;
+	--for=*) for_=${1#--for=}; shift ;;
+	-h|--help) sed -n '3,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	*) die "demo.sh: unknown argument $1 (see --help)" ;;
+	esac
+done
+case $for_ in
+'') ;;
+*[0-9]s|*[0-9]) for_=${for_%s}s ;;
+*) die "demo.sh: --for takes seconds, e.g. 30s" ;;
+esac
+if [ -z "$for_" ] && [ ! -t 0 ]; then
+	die "the interactive demo needs a terminal; use --for 30s (make demo FOR=30s) without one"
+fi
+
 "$TOP/scripts/deps.sh"
 "$TOP/scripts/build-kmod.sh" x86_64
-exec "$TOP/tests/harness/vm-x86.sh" --lane demo --run "$TOP/tests/harness/demo-guest.sh"
+"$TOP/scripts/build-userland.sh" native
+
+if [ -n "$for_" ]; then
+	# The run's time limit (300 s) covers boot, stack start-up and the demo.
+	[ "${for_%s}" -le 200 ] || die "demo.sh: --for at most 200s"
+	VMTEST_APPEND="advee.demo=for:$for_" \
+		exec "$TOP/tests/harness/vm-x86.sh" --lane demo --run "$TOP/tests/harness/demo-guest.sh"
+fi
+read -r rows cols < <(stty size)
+VMTEST_APPEND="advee.demo=tui advee.rows=$rows advee.cols=$cols advee.term=${TERM:-vt100}" \
+	exec "$TOP/tests/harness/vm-x86.sh" --lane demo --interactive --run "$TOP/tests/harness/demo-guest.sh"

@@ -1,42 +1,120 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# demo-guest.sh: what `make demo` runs inside the VM until the live robot demo
-# exists: load every module of the project, show what each one registered, and
-# unload them again.
+# demo-guest.sh: what `make demo` runs inside the VM (docs/demo.md). Brings up
+# the whole low level on the simulated robot (tests/vm/stack/lib.sh: kernel
+# modules, rs485-sim, robot-sim with its CANopen drives on vcan0, the
+# supervisor with every driver daemon), lets the planner stand-in drive the
+# scripted path, and shows the robot through diagnostic_center:
+#   interactive: the terminal UI on the VM's console (the caller's terminal);
+#                quitting it (q) ends the demo and the VM powers off
+#   --for 30s:   diagnostic_center --text prints a summary every 5 s for that
+#                long; exit 0 when the stack ran and the robot moved
+#
+# usage: demo-guest.sh [--for DURATION] [--tui] [--rows N --cols N --term TERM]
+# Without arguments the options come from the kernel command line (the host's
+# scripts/demo.sh sets them): advee.demo=tui|for:DURATION, advee.rows=N,
+# advee.cols=N, advee.term=TERM.
 set -u
-mods=()
-while read -r ko; do [ -n "$ko" ] && mods+=("$(basename "$ko" .ko)"); done <"$VMTEST_MODULES"
+mode= for_= rows= cols= term=
+for word in $(cat /proc/cmdline); do
+	case $word in
+	advee.demo=tui) mode=tui ;;
+	advee.demo=for:*) mode=for for_=${word#advee.demo=for:} ;;
+	advee.rows=*) rows=${word#*=} ;;
+	advee.cols=*) cols=${word#*=} ;;
+	advee.term=*) term=${word#*=} ;;
+	esac
+done
+while [ $# -gt 0 ]; do
+	case $1 in
+	--for) mode=for for_=$2; shift 2 ;;
+	--tui) mode=tui; shift ;;
+	--rows) rows=$2; shift 2 ;;
+	--cols) cols=$2; shift 2 ;;
+	--term) term=$2; shift 2 ;;
+	*) echo "demo-guest.sh: unknown argument $1" >&2; exit 2 ;;
+	esac
+done
+[ -n "$mode" ] || mode=for for_=30s
 
-echo "Advee low-level stack on $(uname -sr) ($(uname -m)), ${#mods[@]} project module(s)"
-printf '%-14s %-9s %s\n' MODULE SIZE DESCRIPTION
-before_dev=$(ls /dev | sort)
-before_tty=$(ls /sys/class/tty | sort)
-rc=0
-for m in "${mods[@]}"; do
-	if ! out=$(modprobe "$m" 2>&1); then
-		printf '%-14s %-9s %s\n' "$m" "-" "LOAD FAILED: $out"
-		rc=1
-		continue
+. "$VMTEST_REPO/tests/vm/stack/lib.sh"
+PERIOD=5s
+
+if [ "$mode" = tui ]; then
+	# The runner gives programs /dev/null and a log file; the demo wants the
+	# console, i.e. the terminal QEMU's serial port is connected to. Opening
+	# it makes it this session's controlling terminal (Ctrl-C, resize).
+	exec </dev/ttyS0 >/dev/ttyS0 2>&1
+	dmesg -n 1	# kernel messages would draw over the screen
+	stty sane
+	[ -n "$rows" ] && [ -n "$cols" ] && stty rows "$rows" cols "$cols"
+	export TERM=${term:-vt100}
+	echo "Advee demo: bringing up the low level on the simulated robot (about 30 s under TCG) ..."
+fi
+
+echo "Advee low-level stack on the simulated robot ($(uname -sr), $(nproc) CPU(s) under QEMU TCG)"
+if [ -n "$(stack_missing)" ]; then
+	echo "Not there yet (the demo runs without them):"
+	stack_missing | sed 's/^/  - /'
+fi
+if ! stack_up; then
+	echo "demo: the stack did not come up:"
+	[ -n "$STACK_RUN" ] && stack_logs 15 | sed 's/^# //'
+	[ "$mode" = tui ] && sleep 5
+	exit 1
+fi
+echo "Running: kernel modules ts7800-sim ts-uart ts7800-dio n_rs485 ts7800-dio-i2c max6615 vcan; rs485-sim;"
+echo "  robot-sim (robot drives: $STACK_ROBOT_DRIVES); advee-watchdog with $STACK_MODULES"
+
+PATH_FILE=$ROBOTSIM_CONF/square-path.yaml
+drive_args=(--home --home-wait 3 --beacons 1,2,3,4,5,6,7,8 --quiet)
+if [ "$STACK_ROBOT_DRIVES" = can ]; then
+	echo "Planner stand-in: advee-drive-script plays $(basename "$PATH_FILE") onto LL_CMD_MOTION at 10 Hz"
+else
+	echo "robot-sim plays $(basename "$PATH_FILE") itself (no simulated CAN drives yet): LL_CMD_MOTION does not move it"
+fi
+
+if [ "$mode" = tui ]; then
+	# The path once, then the operator drives (arrow keys); standstill
+	# commands would fight the manual ones, so none after the path.
+	stack_drive "$PATH_FILE" "${drive_args[@]}" --hold 0
+	if stack_has diagnostic-center; then
+		"$DIAGNOSTIC_CENTER"
+		rc=$?
+	else
+		echo "diagnostic_center is not built: showing the LCM traffic instead (Ctrl-C ends the demo)"
+		trap 'true' INT
+		"$STACK_LISTEN" --seconds 86400
+		rc=0
 	fi
-	size=$(awk -v m="${m//-/_}" '$1 == m { print $2 }' /proc/modules)
-	printf '%-14s %-9s %s\n' "$m" "$size" "$(modinfo -F description "$m" | head -1)"
-done
-sleep 0.5	# devtmpfs and sysfs settle
-echo
-echo "New device nodes:   $(comm -13 <(echo "$before_dev") <(ls /dev | sort) | tr '\n' ' ')"
-echo "New ttys:           $(comm -13 <(echo "$before_tty") <(ls /sys/class/tty | sort) | tr '\n' ' ')"
-echo "Line disciplines:   $(tr '\n' ',' </proc/tty/ldiscs | sed 's/ \+/ /g; s/,$//')"
-echo "hwmon chips:        $(cat /sys/class/hwmon/*/name 2>/dev/null | tr '\n' ' ')"
-echo
-for ((i = ${#mods[@]} - 1; i >= 0; i--)); do
-	modprobe -r "${mods[i]}" 2>/dev/null
-done
-for m in "${mods[@]}"; do
-	if grep -q "^${m//-/_} " /proc/modules; then
-		echo "still loaded after unload: $m"
-		rc=1
-	fi
-done
-[ $rc = 0 ] && echo "All ${#mods[@]} modules loaded and unloaded cleanly."
+	clear 2>/dev/null
+	echo "demo: diagnostic_center exited ($rc); stopping the stack and powering off"
+	stack_down
+	exit 0
+fi
+
+# --for: the path (if it is shorter, the robot then stands), a text summary
+# every $PERIOD.
+stack_drive "$PATH_FILE" "${drive_args[@]}" --stay
+t0=$(date +%s)
+if stack_has diagnostic-center; then
+	"$DIAGNOSTIC_CENTER" --text --for "$for_" --period "$PERIOD"
+	rc=$?
+else
+	# Until diagnostic_center exists: the decoded messages of the channels the
+	# summary would show, the last of each every period.
+	secs=${for_%s}
+	rc=0
+	while [ $(($(date +%s) - t0)) -lt "$secs" ]; do
+		"$STACK_LISTEN" --seconds "${PERIOD%s}" >"$STACK_RUN/period.txt" || rc=1
+		echo "--- $(($(date +%s) - t0)) s"
+		for ch in CM_DATA_STATE SIM_DATA_POSE LL_DATA_ODO LL_CMD_MOTION LL_DATA_DRIVES LL_DATA_SRFS \
+			LL_DATA_BEACONS LL_DATA_TEMPERATURE LL_DATA_FANS LL_DATA_POWER; do
+			grep "^$ch " "$STACK_RUN/period.txt" | tail -1
+		done
+	done
+fi
+echo "demo: ran $(($(date +%s) - t0)) s; diagnostic_center exit status $rc"
+stack_down
 exit $rc

@@ -88,6 +88,32 @@ stack_missing() {
 	return 0
 }
 
+# stack_require PIECE...: skip the whole test program (TAP "1..0 # SKIP",
+# exit 4) naming what is missing, before tap_plan.
+stack_require() {
+	local p missing=
+	for p in "$@"; do
+		stack_has "$p" || missing="${missing:+$missing, }$(stack_missing | grep -m1 "^$(stack_piece_name "$p")")"
+	done
+	[ -z "$missing" ] && return 0
+	printf 'TAP version 13\n1..0 # SKIP missing: %s\n' "$missing"
+	exit 4
+}
+stack_piece_name() {
+	case $1 in
+	canbus) echo driver_canbus ;;
+	robot-can) echo "robot-sim --can" ;;
+	sim-pose) echo "robot-sim --lcm" ;;
+	diagnostic-center) echo diagnostic_center ;;
+	esac
+}
+
+# stack_field LINE KEY: the value of KEY=value in a decoded line.
+stack_field() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p" | head -1; }
+
+# stack_close VALUE WANT TOLERANCE: |VALUE - WANT| <= TOLERANCE (numbers).
+stack_close() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
+
 # stack_bg NAME CMD...: CMD in the background, output in $STACK_RUN/NAME.log;
 # sets STACK_LAST_PID.
 stack_bg() {
@@ -285,8 +311,23 @@ stack_up() {
 # stack_drive FILE [ARGS...]: advee-drive-script plays FILE onto LL_CMD_MOTION.
 stack_drive() {
 	[ -x "$DRIVE_SCRIPT" ] || { echo "stack: $DRIVE_SCRIPT not built" >&2; return 1; }
-	stack_bg drive-script "$DRIVE_SCRIPT" "$@" --path "$1"
+	local file=$1
+	shift
+	stack_bg drive-script "$DRIVE_SCRIPT" --path "$file" "$@"
 	STACK_DRIVE_PID=$STACK_LAST_PID
+}
+
+# stack_world_at X Y HEADING_RAD: what the robot's sensors see standing at
+# that pose in the same world (robot-sim's own model, --print block of one
+# simulated second: srf_m, ir_m, beacons lines), for comparing with what
+# came through the simulators, the kernel and the daemons.
+stack_world_at() {
+	local robot=$STACK_RUN/robot-at.yaml
+	awk -v x="$1" -v y="$2" -v h="$3" '
+		/^start:/ { printf "start: {x: %s, y: %s, heading_deg: %.6f}\n", x, y, h * 180 / 3.14159265358979; next }
+		{ print }' "$ROBOTSIM_CONF/robot.yaml" >"$robot"
+	printf '0 0\n' | "$ROBOT_SIM" --map "$ROBOTSIM_CONF/room.yaml" --robot "$robot" --drive-input - \
+		--fast --duration 1 --print
 }
 
 # stack_sim COMMAND...: one rs485-sim control command, its reply on stdout.
