@@ -211,7 +211,13 @@ stack_conf() {
 		"$d/driver_power/conf/driver_power.yaml" >"$c/driver_power.yaml"
 	cp "$d/driver_aux/conf/driver_aux.yaml" "$c/driver_aux.yaml"
 	if stack_has canbus; then
-		sed -e 's|\bcan0\b|vcan0|' "$d/driver_canbus/conf/driver_canbus.yaml" >"$c/driver_canbus.yaml"
+		# Heartbeats: on a loaded TCG host the simulated drives' 100 ms
+		# heartbeat (lost after 3 periods) drops out for seconds at a time
+		# (seen: "heartbeat lost", motion refused); 300 ms, and a master
+		# timeout and SDO timeout with the same headroom.
+		sed -e 's|\bcan0\b|vcan0|' -e 's|heartbeat_ms: 100|heartbeat_ms: 300|g' \
+			-e 's|master_timeout_ms: 500|master_timeout_ms: 1500|' -e 's|sdo_timeout_ms: 500|sdo_timeout_ms: 1500|' \
+			"$d/driver_canbus/conf/driver_canbus.yaml" >"$c/driver_canbus.yaml"
 	fi
 
 	STACK_MODULES="driver_aux driver_rs485a driver_rs485b driver_power"

@@ -1,0 +1,60 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+# Issue 11: driving into a wall. The planner stand-in keeps commanding
+# 0.8 m/s east from the start pose (2, 2) towards the east wall (x = 10 m);
+# at the front bumper's contact robot-sim raises PAUSE (BR-PSC1 PAUSE event,
+# drive motor unpowered), driver_power publishes LL_EVENT_STOP, driver_canbus
+# quick-stops the drives (LL_DATA_DRIVES stopped), and the robot stands at
+# the wall (ground truth speed 0) although LL_CMD_MOTION still asks for
+# 0.8 m/s; it never passes the wall.
+. "$(dirname "$0")/lib.sh"
+stack_require canbus robot-can sim-pose
+
+tap_plan 7
+if ! stack_up; then
+	tap_diag "the stack did not come up"
+	stack_logs 20
+	exit 1
+fi
+OUT=$STACK_RUN/listen.txt
+"$STACK_LISTEN" --seconds 60 SIM_DATA_POSE LL_EVENT_STOP LL_DATA_DRIVES LL_DATA_POWER LL_CMD_MOTION >"$OUT" &
+LISTEN=$!
+sleep 1
+# 8 m at 0.8 m/s would end at x = 11.6: the bumper (0.9 m ahead of the rear
+# axle) touches the wall at x = 9.1 after about 9 s.
+printf 'path:\n  - {speed_mps: 0.8, steering_deg: 0, duration_s: 13}\n' >"$STACK_RUN/wall.yaml"
+stack_drive "$STACK_RUN/wall.yaml" --hold 1
+wait "$STACK_DRIVE_PID"
+sleep 1
+kill "$LISTEN"
+wait "$LISTEN" 2>/dev/null
+tap_diag "messages: $(awk '{ print $1 }' "$OUT" | sort | uniq -c | awk '{ printf "%s %s, ", $2, $1 }')"
+
+contact=$(grep -m1 '^SIM_DATA_POSE .* pause=1' "$OUT")
+tap_diag "first pose with PAUSE: $contact"
+tap_ok "robot-sim: the front bumper touched the wall and raised PAUSE (source bit 0)" \
+	test -n "$contact" -a "$(( $(stack_field "$contact" pause_sources) & 1 ))" = 1
+stop=$(grep -m1 '^LL_EVENT_STOP .*stop=1' "$OUT")
+tap_diag "$stop"
+tap_ok "driver_power published LL_EVENT_STOP (stop=1, source PSC1)" \
+	test -n "$stop" -a "$(stack_field "$stop" module) $(stack_field "$stop" source)" = "driver_power 0"
+tap_ok "LL_DATA_POWER reports PAUSE engaged" grep -q '^LL_DATA_POWER .* paused=1' "$OUT"
+drives=$(grep -m1 '^LL_DATA_DRIVES .*stopped=1' "$OUT")
+tap_diag "$drives"
+tap_ok "driver_canbus quick-stopped the drives (LL_DATA_DRIVES stopped=1)" test -n "$drives"
+xmax=$(grep '^SIM_DATA_POSE ' "$OUT" | tr ' ' '\n' | sed -n 's/^x=//p' | sort -g | tail -1)
+tap_ok "the robot never passed the wall: largest true x $xmax m (<= 9.1)" awk -v x="$xmax" 'BEGIN { exit !(x != "" && x <= 9.1) }'
+# From 0.5 s after the stop event to the end of the 0.8 m/s commands.
+t_stop=$(stack_field "$stop" t)
+t_cmd_end=$(grep '^LL_CMD_MOTION .*speed=0.8000' "$OUT" | tail -1)
+t_cmd_end=$(stack_field "$t_cmd_end" t)
+moving=$(grep '^SIM_DATA_POSE ' "$OUT" | awk -v a="$t_stop" -v b="$t_cmd_end" '
+	{ for (i = 1; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] } }
+	f["t"] > a + 0.5 && f["t"] <= b { n++; if (f["speed"] > 0.001 || f["speed"] < -0.001) m++ }
+	END { printf "%d %d", m, n }')
+tap_diag "poses after the stop while 0.8 m/s was still commanded: moving, total = $moving"
+tap_ok "the robot stands at the wall (true speed 0) while LL_CMD_MOTION still asks for 0.8 m/s" \
+	awk -v m="$moving" 'BEGIN { split(m, a, " "); exit !(a[2] >= 5 && a[1] == 0) }'
+last=$(grep '^SIM_DATA_POSE ' "$OUT" | tail -1)
+tap_ok "at the end the ground truth speed is 0 ($(stack_field "$last" speed))" stack_close "$(stack_field "$last" speed)" 0 0.001
+tap_finish
