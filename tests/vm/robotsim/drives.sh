@@ -46,6 +46,17 @@ val() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p" | head -1; }
 close_to() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
 # cond 'SHELL CONDITION': for tap_ok with && between checks.
 cond() { eval "$1"; }
+# wait_status NODE MASK SECONDS: until the statusword has every bit of MASK
+# (canopenctl takes a second or so per call under TCG); prints the last one.
+wait_status() {
+	local i st
+	for ((i = 0; i < $3; i++)); do
+		st=$(ctl read "$1" 6041 u16)
+		(( (${st%% *} & $2) == $2 )) && break
+		sleep 1
+	done
+	echo "$st"
+}
 # wait_exit PID SECONDS: the exit status of a background process, 255 if it did not end in time.
 wait_exit() {
 	local i
@@ -81,8 +92,7 @@ ctl write 2 6098 i8 17
 ctl write 2 6099:1 u32 2000
 ctl enable 2 >/dev/null
 ctl write 2 6040 u16 0x1f
-sleep 2
-st=$(ctl read 2 6041 u16)
+st=$(wait_status 2 0x1000 15)
 p=$(pose)
 tap_diag "homed: statusword $st; $p"
 tap_ok "IclA homing attained (statusword bit 12)" test $((${st%% *} & 0x1000)) -ne 0
@@ -97,14 +107,16 @@ ctl write 2 6081 u32 3000
 ctl write 2 6040 u16 0x0f
 ctl write 2 607a i32 1745
 ctl write 2 6040 u16 0x1f
-sleep 2
+sleep 1  # 1745 units at 3000 units/s
+wait_status 2 0x0400 15 >/dev/null  # target reached
 p=$(pose)
 tap_diag "turned: $p"
 tap_ok "steering follows the IclA: 10.0 degrees" close_to "$(val "$p" steering_deg)" 10 0.02
 ctl write 2 6040 u16 0x0f
 ctl write 2 607a i32 0
 ctl write 2 6040 u16 0x1f
-sleep 2
+sleep 1
+wait_status 2 0x0400 15 >/dev/null
 p=$(pose)
 tap_ok "and back to straight ahead" close_to "$(val "$p" steering_deg)" 0 0.02
 h0=$(val "$p" heading_deg)

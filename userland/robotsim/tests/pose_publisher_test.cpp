@@ -14,15 +14,15 @@ namespace advee::robotsim {
 namespace {
 
 struct Received {
-  void on(const lcm::ReceiveBuffer*, const std::string&, const sim::data_pose_t* m) { last = *m; }
   std::optional<sim::data_pose_t> last;
 };
+void on_pose(const lcm::ReceiveBuffer*, const std::string&, const sim::data_pose_t* m, Received* rx) { rx->last = *m; }
 
 TEST(PosePublisher, PublishesTheTrueStateOnSimDataPose) {
   lcm::LCM lcm("memq://");
   ASSERT_TRUE(lcm.good());
   Received rx;
-  lcm.subscribe("SIM_DATA_POSE", &Received::on, &rx);
+  lcm.subscribeFunction("SIM_DATA_POSE", &on_pose, &rx);
   RobotDescription d = test::exact_robot();
   d.start = Pose{{8.5, 4.0}, 0};  // front bumper 0.6 m from the east wall
   Robot robot(d, test::example_room());

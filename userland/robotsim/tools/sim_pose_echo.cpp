@@ -14,19 +14,19 @@
 
 namespace {
 
-class Printer {
- public:
-  void on_pose(const lcm::ReceiveBuffer*, const std::string&, const sim::data_pose_t* m) {
-    std::printf("SIM_DATA_POSE t=%.2f x=%.4f y=%.4f heading_deg=%.3f speed=%.4f steering_deg=%.3f pause=%d "
-                "engaged=%d ticks=%lld,%lld\n",
-                m->sim_time_s, m->x_m, m->y_m, m->heading_rad * 180 / M_PI, m->speed_mps,
-                m->steering_rad * 180 / M_PI, m->pause_sources, m->pause_engaged ? 1 : 0,
-                static_cast<long long>(m->ticks_left), static_cast<long long>(m->ticks_right));
-    std::fflush(stdout);
-    ++count;
-  }
+struct Printer {
   long count = 0;
 };
+
+void on_pose(const lcm::ReceiveBuffer*, const std::string&, const sim::data_pose_t* m, Printer* p) {
+  std::printf("SIM_DATA_POSE t=%.2f x=%.4f y=%.4f heading_deg=%.3f speed=%.4f steering_deg=%.3f pause=%d "
+              "engaged=%d ticks=%lld,%lld\n",
+              m->sim_time_s, m->x_m, m->y_m, m->heading_rad * 180 / M_PI, m->speed_mps,
+              m->steering_rad * 180 / M_PI, m->pause_sources, m->pause_engaged ? 1 : 0,
+              static_cast<long long>(m->ticks_left), static_cast<long long>(m->ticks_right));
+  std::fflush(stdout);
+  ++p->count;
+}
 
 }  // namespace
 
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   Printer p;
-  lcm.subscribe(advee::robotsim::kSimDataPoseChannel, &Printer::on_pose, &p);
+  lcm.subscribeFunction(advee::robotsim::kSimDataPoseChannel, &on_pose, &p);
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   while ((count == 0 || p.count < count) && (seconds == 0 || std::chrono::steady_clock::now() < end)) {
     const int ms = seconds == 0 ? 1000
