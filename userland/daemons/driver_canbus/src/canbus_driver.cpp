@@ -25,8 +25,8 @@ CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), 
     runtime_ = std::make_unique<canopen::MasterRuntime>(loop_, cfg_.interface, mc);
   } catch (const std::system_error& e) {
     throw ModuleExit(ExitKind::Device, kExitNoInterface,
-                     "CAN interface " + cfg_.interface + ": " + e.what() + " (is it up? ip link set " + cfg_.interface +
-                         " up)");
+                     "CAN interface " + cfg_.interface + ": " + e.what() +
+                         " (driver_canbus.interface: can0 on the robot, vcan0 in tests)");
   }
   // ErrorReporter::report is thread-safe: the CAN loop reports directly.
   controller_ = std::make_unique<DriveController>(
