@@ -11,6 +11,7 @@
 #include <websocketpp/server.hpp>
 
 #include "advee/web/client_queue.hpp"
+#include "advee/web/history.hpp"
 #include "advee/web/static_files.hpp"
 
 namespace advee::web {
@@ -41,13 +42,18 @@ struct BridgeServer::Impl {
   asio::steady_timer flush_timer;
   std::map<Hdl, Client, std::owner_less<Hdl>> clients;
   std::map<std::string, std::string> snapshot;  // newest message per key
+  History history;
   std::uint64_t messages = 0;
   std::uint64_t dropped_closed = 0;  // drops of clients that have gone
   int flushes = 0;
   bool stopping = false;
 
   Impl(asio::io_context& io_, BridgeOptions o, Log l)
-      : io(io_), opt(std::move(o)), log(std::move(l)), flush_timer(io_) {}
+      : io(io_),
+        opt(std::move(o)),
+        log(std::move(l)),
+        flush_timer(io_),
+        history(opt.history_s, opt.history_max) {}
 
   void start() {
     server.clear_access_channels(websocketpp::log::alevel::all);
@@ -116,8 +122,16 @@ struct BridgeServer::Impl {
   void on_open(Hdl h) {
     if (stopping) return;
     auto& client = clients[h];
+    // The history in order, straight to the socket (it is bounded, and the
+    // queue would coalesce it); then the newest of everything.
+    std::error_code ec;
+    for (const auto& payload : history.payloads()) {
+      server.send(h, payload, websocketpp::frame::opcode::text, ec);
+      if (ec) return;
+    }
     for (const auto& [key, payload] : snapshot) client.queue.push(key, payload);
     flush(h, client);
+    send_status(h, client);
   }
 
   void forget(Hdl h) {
@@ -135,7 +149,7 @@ struct BridgeServer::Impl {
   void on_fail(Hdl h) {
     std::error_code ec;
     auto con = server.get_con_from_hdl(h, ec);
-    if (!ec) log("connection failed: " + con->get_ec().message());
+    if (!ec && !stopping) log("connection failed: " + con->get_ec().message());
     forget(h);
   }
 
@@ -154,25 +168,30 @@ struct BridgeServer::Impl {
 
   // The status goes straight out, never queued: a client too slow to take it
   // gets the next one a second later.
-  void send_status() {
-    for (auto& [hdl, client] : clients) {
-      std::error_code ec;
-      auto con = server.get_con_from_hdl(hdl, ec);
-      if (ec || con->get_state() != websocketpp::session::state::open ||
-          con->get_buffered_amount() > opt.max_buffered_bytes)
-        continue;
-      const std::string s =
-          std::string("{\"channel\":\"WEB_BRIDGE\",\"utime\":") + std::to_string(utime_now()) +
-          ",\"clients\":" + std::to_string(clients.size()) +
-          ",\"messages\":" + std::to_string(messages) +
-          ",\"dropped\":" + std::to_string(client.queue.dropped()) + "}";
-      server.send(hdl, s, websocketpp::frame::opcode::text, ec);
-    }
+  void send_status(Hdl hdl, const Client& client) {
+    std::error_code ec;
+    auto con = server.get_con_from_hdl(hdl, ec);
+    if (ec || con->get_state() != websocketpp::session::state::open ||
+        con->get_buffered_amount() > opt.max_buffered_bytes)
+      return;
+    const std::string s =
+        std::string("{\"channel\":\"WEB_BRIDGE\",\"utime\":") + std::to_string(utime_now()) +
+        ",\"clients\":" + std::to_string(clients.size()) +
+        ",\"messages\":" + std::to_string(messages) +
+        ",\"dropped\":" + std::to_string(client.queue.dropped()) + "}";
+    server.send(hdl, s, websocketpp::frame::opcode::text, ec);
   }
 
-  void broadcast(const std::string& key, const std::string& payload) {
+  void send_status() {
+    for (auto& [hdl, client] : clients) send_status(hdl, client);
+  }
+
+  void broadcast(const std::string& key, const std::string& payload, bool keep) {
     if (stopping) return;
     ++messages;
+    if (keep)
+      history.add(std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(),
+                  payload);
     if (snapshot.size() < kMaxSnapshotKeys || snapshot.count(key)) snapshot[key] = payload;
     for (auto& [hdl, client] : clients) {
       client.queue.push(key, payload);
@@ -203,8 +222,8 @@ BridgeServer::~BridgeServer() {
   if (impl_) impl_->shutdown();
 }
 
-void BridgeServer::broadcast(const std::string& key, const std::string& payload) {
-  impl_->broadcast(key, payload);
+void BridgeServer::broadcast(const std::string& key, const std::string& payload, bool keep) {
+  impl_->broadcast(key, payload, keep);
 }
 
 void BridgeServer::shutdown() { impl_->shutdown(); }

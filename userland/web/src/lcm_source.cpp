@@ -29,7 +29,7 @@ void LcmSource::on_message(const lcm::ReceiveBuffer* rb, const std::string& chan
     ++self->undecodable_;
     return;
   }
-  self->sink_(replace_key(*j), j->dump());
+  self->sink_(*j);
 }
 
 void LcmSource::run(std::stop_token stop) {

@@ -50,8 +50,8 @@ class Bridge : public ::testing::Test {
     });
     done.get_future().wait();
   }
-  void broadcast(const std::string& key, const std::string& payload) {
-    on_io([&] { server_->broadcast(key, payload); });
+  void broadcast(const std::string& key, const std::string& payload, bool keep = false) {
+    on_io([&] { server_->broadcast(key, payload, keep); });
   }
   BridgeStats stats() {
     BridgeStats s;
@@ -154,6 +154,20 @@ TEST_F(Bridge, NewClientGetsTheNewestOfEachKeyFirst) {
             R"({"channel":"CM_DATA_STATE","module":"a","state":3})");
   EXPECT_EQ(read_until_prefix(s, R"({"channel":"CM_DATA_STATE")"),
             R"({"channel":"CM_DATA_STATE","module":"b","state":3})");
+}
+
+TEST_F(Bridge, NewClientGetsTheHistoryInOrderThenTheSnapshot) {
+  for (int i = 0; i < 5; ++i)
+    broadcast("WEB_ODO_POSE", R"({"channel":"WEB_ODO_POSE","i":)" + std::to_string(i) + "}", true);
+  broadcast("CM_DATA_STATE/a", R"({"channel":"CM_DATA_STATE","module":"a"})");  // not kept
+  auto s = websocket();
+  for (int i = 0; i < 5; ++i)
+    EXPECT_EQ(read_frame(s), R"({"channel":"WEB_ODO_POSE","i":)" + std::to_string(i) + "}");
+  // Then the snapshot: the newest per key, in key order.
+  EXPECT_EQ(read_frame(s), R"({"channel":"CM_DATA_STATE","module":"a"})");
+  EXPECT_EQ(read_frame(s), R"({"channel":"WEB_ODO_POSE","i":4})");
+  // And the bridge's status at once (the page shows it from the start).
+  EXPECT_EQ(read_frame(s).rfind(R"({"channel":"WEB_BRIDGE")", 0), 0u);
 }
 
 TEST_F(Bridge, SlowClientGetsTheNewestAndDropsAreCounted) {

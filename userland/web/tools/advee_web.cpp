@@ -15,7 +15,9 @@
 
 #include "advee/web/bridge_server.hpp"
 #include "advee/web/lcm_source.hpp"
+#include "advee/web/history.hpp"
 #include "advee/web/message_json.hpp"
+#include "advee/web/odometry.hpp"
 #include "advee/web/scene.hpp"
 
 #ifndef ADVEE_WEB_DATADIR
@@ -57,6 +59,10 @@ int main(int argc, char** argv) {
       "serves the dashboard page (--root) and /scene.json (the robot outline, sensor\n"
       "positions and room from robot-sim's --robot and --map files) over HTTP on the\n"
       "same port. Open http://HOST:PORT/ in a browser.\n\n"
+      "The bridge integrates LL_DATA_ODO itself (from the robot file's start pose) and\n"
+      "sends the estimate as WEB_ODO_POSE {x_m, y_m, heading_rad}; a page that connects\n"
+      "gets the last 120 s of poses, speeds and temperatures first, then the newest\n"
+      "message of every channel.\n\n"
       "A slow client never makes the bridge grow: while its socket holds more than\n"
       "--max-buffered bytes unsent, only the newest message per channel (and module)\n"
       "waits for it; replaced ones are counted as dropped and shown on the page.\n\n"
@@ -100,6 +106,12 @@ int main(int argc, char** argv) {
   if (scene.contains("errors"))
     for (const auto& e : scene["errors"]) log_line("scene: " + e.get<std::string>());
   opt.scene_json = scene.dump();
+  // Odometry starts where robot-sim starts the robot (the robot file), or at 0.
+  advee::web::Pose2 odo_start;
+  if (scene.contains("robot")) {
+    const auto& s = scene["robot"]["start"];
+    odo_start = {s["x"].get<double>(), s["y"].get<double>(), s["heading_rad"].get<double>()};
+  }
 
   asio::io_context io;
   std::optional<advee::web::BridgeServer> server;
@@ -107,11 +119,20 @@ int main(int argc, char** argv) {
   try {
     server.emplace(io, opt, log_line);
     // Messages are decoded on the LCM thread and sent on the io thread.
+    auto forward = [&io, &server](const nlohmann::json& m) {
+      const std::string channel = m.value("channel", "");
+      asio::post(io, [&server, k = advee::web::replace_key(m), p = m.dump(),
+                      keep = advee::web::kept_in_history(channel)] {
+        if (server) server->broadcast(k, p, keep);
+      });
+    };
+    // The odometry estimate lives here, on the LCM thread, for every page alike.
     source.emplace(lcm_url, advee::web::bridged_channels(),
-                   [&io, &server](std::string key, std::string payload) {
-                     asio::post(io, [&server, k = std::move(key), p = std::move(payload)] {
-                       if (server) server->broadcast(k, p);
-                     });
+                   [forward, odo = advee::web::OdometryIntegrator(odo_start)](const nlohmann::json& m) mutable {
+                     forward(m);
+                     if (m.value("channel", "") != "LL_DATA_ODO") return;
+                     odo.add(m.value("speed_mps", 0.0), m.value("yaw_rate_radps", 0.0), m.value("interval_s", 0.0));
+                     forward(odo.to_json(m.value("utime", 0LL)));
                    });
   } catch (const std::exception& e) {
     log_line(e.what());

@@ -28,6 +28,9 @@ struct BridgeOptions {
   std::size_t max_buffered_bytes = 256 * 1024;
   // How often pending messages are retried and the status message is sent.
   std::uint32_t flush_interval_ms = 100;
+  // History replayed to a new client (messages broadcast with keep).
+  double history_s = 120;
+  std::size_t history_max = 6000;
 };
 
 struct BridgeStats {
@@ -46,8 +49,9 @@ class BridgeServer {
   BridgeServer& operator=(const BridgeServer&) = delete;
 
   // One message for every client (and for the snapshot that a newly
-  // connected client gets first). Call on the io_context's thread.
-  void broadcast(const std::string& key, const std::string& payload);
+  // connected client gets first; with `keep`, also for the history replayed
+  // to it before that). Call on the io_context's thread.
+  void broadcast(const std::string& key, const std::string& payload, bool keep = false);
 
   // Stops listening and closes every connection (going away).
   void shutdown();

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-2.0
 // Receives the bridged LCM channels on its own thread and hands each decoded
-// message (as JSON text) to a callback on that thread. Stopping = destroying:
+// message (message_to_json()) to a callback on that thread. Stopping = destroying:
 // the thread is joined within one LCM wait (100 ms).
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <memory>
 #include <stop_token>
 #include <string>
@@ -22,8 +23,7 @@ namespace advee::web {
 
 class LcmSource {
  public:
-  // key (replace_key()), payload (JSON text)
-  using Sink = std::function<void(std::string key, std::string payload)>;
+  using Sink = std::function<void(const nlohmann::json& message)>;
 
   // Throws std::runtime_error when LCM cannot be set up for `url` ("" = LCM's
   // default, LCM_DEFAULT_URL).

@@ -1,0 +1,141 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# browser-check.sh [USERLAND_BUILD_DIR]: the dashboard end to end on the host.
+# Starts advee-web on a private LCM group (UDP multicast over the host's
+# loopback, ttl=0: nothing leaves the machine; port 7679 so that other
+# engineers' LCM tests on 7667 cannot mix in), publishes the known scene of
+# advee-web-test-publisher, renders the page with headless Chromium and checks
+# the DOM for the values a user would look at. Keeps the screenshot and the
+# DOM under build/web/. One TSV row per check in build/results/web.tsv
+# (name, passed, failed, skipped, status, note) for scripts/check.sh.
+set -uo pipefail
+TOP=$(cd "$(dirname "$0")/../../.." && pwd)
+UL=${1:-$TOP/build/userland}
+OUT=$TOP/build/web
+RESULTS=$TOP/build/results
+ROWS=$RESULTS/web.tsv
+mkdir -p "$OUT" "$RESULTS"
+: >"$ROWS"
+export LCM_DEFAULT_URL="udpm://239.255.76.67:7679?ttl=0"
+failed=0
+row() {	# row NAME ok|fail|skip [NOTE]
+	case $2 in
+	ok) printf 'web: %s\t1\t0\t0\tok\t\n' "$1" ;;
+	skip) printf 'web: %s\t0\t0\t1\tskip\t%s\n' "$1" "${3:-}"; echo "SKIP: $1 (${3:-})" >&2 ;;
+	*) printf 'web: %s\t0\t1\t0\tfail\t%s\n' "$1" "${3:-}"; failed=1; echo "FAIL: $1 (${3:-})" >&2 ;;
+	esac >>"$ROWS"
+	[ "$2" = ok ] && echo "ok: $1"
+}
+PIDS=
+cleanup() {
+	for p in $PIDS; do kill "$p" 2>/dev/null; done
+	for p in $PIDS; do wait "$p" 2>/dev/null; done
+}
+trap cleanup EXIT
+
+WEB=$UL/web/advee-web
+PUB=$UL/web/advee-web-test-publisher
+CHROMIUM=$(command -v chromium || command -v chromium-browser || true)
+if [ ! -x "$WEB" ] || [ ! -x "$PUB" ]; then
+	row "build: advee-web and advee-web-test-publisher" fail "not built in $UL"
+	exit 1
+fi
+if [ -z "$CHROMIUM" ]; then
+	row "chromium installed" fail "apt-get install chromium (scripts/packages.txt)"
+	exit 1
+fi
+
+# A free TCP port: advee-web reports the one it got when given port 0.
+"$WEB" --listen 127.0.0.1:0 --root "$TOP/userland/web/static" \
+	--robot "$TOP/userland/robotsim/conf/robot.yaml" --map "$TOP/userland/robotsim/conf/room.yaml" \
+	2>"$OUT/advee-web.log" &
+WEB_PID=$!
+PIDS="$PIDS $WEB_PID"
+port=
+for _ in $(seq 50); do
+	port=$(sed -n 's|.* on http://127.0.0.1:\([0-9]*\)/$|\1|p' "$OUT/advee-web.log")
+	[ -n "$port" ] && break
+	sleep 0.1
+done
+if [ -z "$port" ]; then
+	row "advee-web starts and listens" fail "$(tail -1 "$OUT/advee-web.log")"
+	exit 1
+fi
+row "advee-web starts and listens" ok
+URL=http://127.0.0.1:$port/
+
+# The drive (6 s at 10 Hz) happens before the browser connects: the page must
+# show it from the bridge's history and odometry, as for a page opened late.
+"$PUB" --drive 6 --hold 60 2>"$OUT/publisher.log" &
+PIDS="$PIDS $!"
+sleep 7.5
+
+# --virtual-time-budget: the page runs 2.5 s of its own (virtual) time after
+# loading, enough for the WebSocket's history and snapshot, then the DOM or
+# the picture is taken.
+chrome() {	# chrome ARGS...: headless, no sandbox (root), no GPU
+	timeout 120 "$CHROMIUM" --headless --no-sandbox --disable-gpu --hide-scrollbars \
+		--no-first-run --user-data-dir="$OUT/chromium-profile" \
+		--window-size=1400,900 --virtual-time-budget=2500 "$@" 2>>"$OUT/chromium.log"
+}
+rm -rf "$OUT/chromium-profile" "$OUT/dashboard.png" "$OUT/chromium.log"
+chrome --dump-dom "$URL" >"$OUT/dashboard-dom.html"
+chrome --screenshot="$OUT/dashboard.png" "$URL" >/dev/null
+
+dom=$OUT/dashboard-dom.html
+check() {	# check NAME REGEX: the rendered DOM matches
+	if grep -Eq "$2" "$dom"; then row "$1" ok; else row "$1" fail "no match for $2 in build/web/dashboard-dom.html"; fi
+}
+check "page connected to the bridge" 'id="conn-status"[^>]*>connected<'
+check "module driver_aux shown in RUN" 'id="module-driver_aux".*state RUN">RUN<'
+check "module driver_rs485a shown in RUN" 'id="module-driver_rs485a".*state RUN">RUN<'
+check "module driver_power shown in PAUSE" 'id="module-driver_power".*state PAUSE">PAUSE<'
+check "supervisor restarts shown (driver_aux: 1)" 'id="module-driver_aux"[^>]*><td>driver_aux</td><td[^>]*>RUN</td><td>RUNNING pid [0-9]+</td><td>1</td>'
+check "temperature temp1 41.5 C" 'id="temp-temp1">41\.5 °C<'
+check "temperature temp2 33.2 C" 'id="temp-temp2">33\.2 °C<'
+check "fan fan1 2400 rpm" 'id="fan-fan1">2400 rpm'
+check "battery 24.6 V" 'id="battery-v"[^>]*>24\.6 V<'
+check "PAUSE indicator on" 'id="pause-indicator" class="pill paused">PAUSE<'
+check "commanded and actual speed after the stop" 'id="cmd-speed">0\.00 m/s<.*id="act-speed">0\.00 m/s<'
+check "error report listed" 'driver_rs485a: test error: bus timeout \(110\)'
+check "bridge status shown" 'id="bridge-stats"[^>]*>bridge: [0-9]+ messages'
+
+# The odometry estimate after the drive: the publisher drives a circle of
+# radius 0.62/tan(0.3) = 2.00 m at 0.5 m/s for 6 s from (2, 2) heading 0:
+# 3.0 m of arc = 1.50 rad, so x = 2 + 2.00 sin 1.5 = 4.00, y = 2 + 2.00 (1 - cos 1.5) = 3.86.
+odo=$(sed -n 's|.*id="odo-pose">x \([-0-9.]*\) m  y \([-0-9.]*\) m  heading \([-0-9.]*\)°<.*|\1 \2 \3|p' "$dom")
+if [ -n "$odo" ] && awk -v p="$odo" 'BEGIN { split(p, a, " ");
+	exit !(a[1] > 3.9 && a[1] < 4.1 && a[2] > 3.76 && a[2] < 3.96 && a[3] > 80 && a[3] < 92) }'; then
+	row "odometry pose from the bridge's history ($odo)" ok
+else
+	row "odometry pose from the bridge's history" fail "got '${odo}', want about 4.00 3.86 85.9"
+fi
+# SIM_DATA_POSE only when the sim package is part of the build.
+if grep -q 'SIM_DATA_POSE' "$OUT/../userland/msgs/CMakeFiles/advee_msgs_gen.dir/build.make" 2>/dev/null ||
+	[ -f "$UL/msgs/gen/sim/data_pose_t.hpp" ]; then
+	check "true pose from SIM_DATA_POSE shown" 'id="true-pose">x 4\.0[0-9] m  y 3\.8[0-9] m'
+else
+	row "true pose from SIM_DATA_POSE shown" skip "sim.data_pose_t not in this build"
+fi
+
+# The screenshot: a real rendering (dark page with a drawn map), not an
+# error page. PNG header, size, and enough distinct bytes to be a picture.
+if [ -s "$OUT/dashboard.png" ] && [ "$(head -c 8 "$OUT/dashboard.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] &&
+	[ "$(stat -c %s "$OUT/dashboard.png")" -gt 50000 ]; then
+	row "screenshot build/web/dashboard.png ($(stat -c %s "$OUT/dashboard.png") bytes)" ok
+else
+	row "screenshot build/web/dashboard.png" fail "missing or too small: see build/web/chromium.log"
+fi
+
+# SIGTERM ends the bridge cleanly (exit 0) with its drop count.
+kill -TERM "$WEB_PID"
+wait "$WEB_PID"
+rc=$?
+PIDS=${PIDS/ $WEB_PID/}
+if [ "$rc" = 0 ] && grep -q 'stopped: [0-9]* messages' "$OUT/advee-web.log"; then
+	row "SIGTERM: advee-web exits 0" ok
+else
+	row "SIGTERM: advee-web exits 0" fail "exit $rc"
+fi
+exit $failed
