@@ -4,7 +4,8 @@
 # check.sh [--test NAME]...: the project's whole test run (the README's test
 # command, and CI's). Installs what is missing, then runs, in order:
 #   kernel gates (W=1 on x86_64/armhf/armel, checkpatch --strict, sparse),
-#   unit tests (CTest, plain and ASan/UBSan), ARM userland cross builds,
+#   unit tests (CTest, plain and ASan/UBSan), the web dashboard in headless
+#   Chromium (userland/web/tests/browser-check.sh), ARM userland cross builds,
 #   the x86_64 VM lane, the armhf VM lane and the debug-kernel VM lane (KASAN,
 #   lockdep, kmemleak, UBSAN; its kernel is built once and cached, see
 #   scripts/debug-kernel.sh).
@@ -48,6 +49,12 @@ stage() {	# stage NAME CMD...: run one step, record it, go on
 if [ "${#tests[@]}" -eq 0 ]; then
 	stage "kernel quality gates" "$TOP/scripts/kernel-gates.sh"
 	stage "unit tests" "$TOP/scripts/unit.sh"
+	# The web dashboard end to end on the host: advee-web, LCM over loopback
+	# multicast, headless Chromium; one row per check in results/web.tsv.
+	rm -f "$BUILD/results/web.tsv"
+	stage "web dashboard (headless Chromium)" "$TOP/userland/web/tests/browser-check.sh"
+	[ -s "$BUILD/results/web.tsv" ] ||
+		printf 'web: browser check did not run\t0\t1\t0\tfail\tsee output above\n' >>"$BUILD/results/stages.tsv"
 	for a in armhf armel; do
 		stage "userland cross build ($a)" "$TOP/scripts/build-userland.sh" "$a"
 		stage_row "userland cross build ($a)" $?
