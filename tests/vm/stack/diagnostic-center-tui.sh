@@ -26,11 +26,14 @@ DC_EXIT=$STACK_RUN/dc.exit
 tmux_() { tmux -S "$TSOCK" "$@"; }
 screen() { tmux_ capture-pane -p -t dc; }
 keys() { tmux_ send-keys -t dc "$@"; }
+# Waits are deadlines in seconds, not iteration counts: under TCG one
+# capture-pane costs a large part of a second.
 # wait_screen ERE SECONDS: true once the screen has a line matching ERE.
 wait_screen() {
-	local i
-	for ((i = 0; i < $2 * 5; i++)); do
+	local end=$((SECONDS + $2))
+	while :; do
 		screen | grep -qE -- "$1" && return 0
+		[ "$SECONDS" -ge "$end" ] && break
 		sleep 0.2
 	done
 	screen | sed 's/^/#| /'
@@ -45,12 +48,20 @@ all_run() {
 	done
 }
 wait_all_run() {
-	local i
-	for ((i = 0; i < $2 * 5; i++)); do
-		all_run "$1" >/dev/null && return 0
+	local end=$((SECONDS + $2))
+	until all_run "$1" >/dev/null; do
+		[ "$SECONDS" -ge "$end" ] && { all_run "$1"; return 1; }
 		sleep 0.2
 	done
-	all_run "$1"
+}
+# until_true SECONDS CMD...: retry CMD until it succeeds or the time is up.
+until_true() {
+	local end=$((SECONDS + $1))
+	shift
+	until "$@"; do
+		[ "$SECONDS" -ge "$end" ] && return 1
+		sleep 0.2
+	done
 }
 # row NAME: the module view's row of NAME, without the selection mark:
 # "name state pid age phase restarts exit next".
@@ -113,18 +124,21 @@ keys 3
 wait_all_run "[> ] " 5 >/dev/null
 set -- $(row driver_aux)
 old_pid=$3
+old_restarts=$6
+[ "$old_restarts" = - ] && old_restarts=0
 tap_diag "driver_aux before: $*"
 kill -STOP "$old_pid"
 t0=$(date +%s%N)
 restarted() {
 	set -- $(row driver_aux)
-	[ "$2" = RUN ] && [ "$3" != "$old_pid" ] && [ "$3" -gt 0 ] 2>/dev/null && [ "$6" != - ] && [ "$6" -ge 1 ]
+	[ "$2" = RUN ] && [ "$3" != "$old_pid" ] && [ "$3" -gt 0 ] 2>/dev/null && [ "$6" != - ] &&
+		[ "$6" -gt "$old_restarts" ]
 }
-for ((i = 0; i < 60; i++)); do restarted && break; sleep 0.2; done
+until_true 25 restarted
 dt=$(( ($(date +%s%N) - t0) / 1000000 ))
 set -- $(row driver_aux)
 tap_diag "driver_aux after SIGSTOP ($dt ms): $*"
-tap_ok "stopped driver_aux shows up restarted: RUN, new pid ($old_pid -> $3), restarts $6" restarted
+tap_ok "stopped driver_aux shows up restarted: RUN, new pid ($old_pid -> $3), restarts $old_restarts -> $6" restarted
 tap_ok "the stopped instance is gone" sh -c "! kill -0 $old_pid 2>/dev/null"
 keys 2
 tap_ok "errors view shows the supervisor's report on driver_aux" \
@@ -136,40 +150,46 @@ set -- $(row driver_rs485b)
 rs_pid=$3
 # Select it: to the top, then down to its position in the (sorted) list.
 for ((i = 0; i < 10; i++)); do keys Up; done
-idx=$(screen | sed -n 's/^[> ] \([a-z_0-9]*\) .*/\1/p' | grep -nx driver_rs485b | cut -d: -f1)
+# (rows from the 4th screen line: the 3rd is the column header)
+idx=$(screen | sed -n '4,$ s/^[> ] \([a-z_0-9]*\) .*/\1/p' | grep -nx driver_rs485b | cut -d: -f1)
+tap_diag "driver_rs485b is row $idx of the module list"
 for ((i = 1; i < idx; i++)); do keys Down; done
-wait_screen '^> driver_rs485b ' 3 >/dev/null
+if ! wait_screen '^> driver_rs485b ' 5 >/dev/null; then
+	# Never send TERMINATE to whatever else is selected (the supervisor!).
+	tap_diag "could not select driver_rs485b"
+	exit 1
+fi
 keys t
-tap_ok "t in the module view: driver_rs485b terminated and kept DOWN" \
-	wait_screen '^> driver_rs485b .* DOWN ' 10
+wait_screen 'press t again to TERMINATE driver_rs485b' 5 >/dev/null
+keys t
+tap_ok "t t in the module view: driver_rs485b terminated and kept DOWN" \
+	wait_screen '^> driver_rs485b .* DOWN ' 15
 keys r
 rs_new() {
 	set -- $(row driver_rs485b)
 	[ "$2" = RUN ] && [ "$3" != "$rs_pid" ] && [ "$5" = RUNNING ]
 }
-for ((i = 0; i < 75; i++)); do rs_new && break; sleep 0.2; done
+until_true 20 rs_new
 tap_ok "r: driver_rs485b runs again with a new pid ($rs_pid -> $(row driver_rs485b | awk '{ print $3 }'))" rs_new
 
 # 13-14: resize to 100x30 and back to 80x24.
 keys 1
 big_layout() {
 	local s
-	sleep 1
 	s=$(screen)
 	printf '%s\n' "$s" | head -1 | grep -q 'Advee diagnostic centre' &&
 		printf '%s\n' "$s" | sed -n 30p | grep -q 'q quit'
 }
 small_layout() {
 	local s
-	sleep 1
 	s=$(screen)
 	printf '%s\n' "$s" | sed -n 24p | grep -q 'q quit' &&
 		printf '%s\n' "$s" | grep -q '^driver_aux  *RUN '
 }
 tmux_ resize-window -t dc -x 100 -y 30
-tap_ok "resized to 100x30: the full title, the help line on line 30" big_layout
+tap_ok "resized to 100x30: the full title, the help line on line 30" until_true 5 big_layout
 tmux_ resize-window -t dc -x 80 -y 24
-tap_ok "back to 80x24: the help line on line 24, the module rows" small_layout
+tap_ok "back to 80x24: the help line on line 24, the module rows" until_true 5 small_layout
 
 # 15-17: quit in the middle of a manual drive.
 keys Up
@@ -178,7 +198,7 @@ observe 2.5 >"$STACK_RUN/obs-quit.txt" &
 OBS=$!
 sleep 0.7
 keys q
-for ((i = 0; i < 25; i++)); do [ -s "$DC_EXIT" ] && break; sleep 0.2; done
+until_true 5 test -s "$DC_EXIT"
 tap_is "q: diagnostic_center exits 0" "$(cat "$DC_EXIT" 2>/dev/null)" 0
 wait "$OBS"
 last=$(grep '^motion' "$STACK_RUN/obs-quit.txt" | tail -1)

@@ -115,7 +115,7 @@ bool Controller::on_key(const Key& k, double now) {
   switch (view_) {
     case View::Summary: return summary_key(k, now);
     case View::Errors: return errors_key(k);
-    case View::Modules: return modules_key(k);
+    case View::Modules: return modules_key(k, now);
     case View::Power: return power_key(k);
   }
   return false;
@@ -187,7 +187,7 @@ bool Controller::errors_key(const Key& k) {
   return false;
 }
 
-bool Controller::modules_key(const Key& k) {
+bool Controller::modules_key(const Key& k, double now) {
   const auto n = model_.modules().size();
   if (k.kind == Key::Up) {
     module_row_ = module_row() > 0 ? module_row() - 1 : 0;
@@ -202,7 +202,20 @@ bool Controller::modules_key(const Key& k) {
     case 'r': set_state(module::State::Run); return true;
     case 'p': set_state(module::State::Pause); return true;
     case 's': set_state(module::State::Stop); return true;
-    case 't': set_state(module::State::Terminate); return true;
+    case 't': {
+      // TERMINATE keeps a module down (and of the supervisor, ends every
+      // module): only a second t within kConfirmS sends it.
+      const auto target = selected_module();
+      if (target.empty() || confirm_target_ != target || now > confirm_until_) {
+        confirm_target_ = target;
+        confirm_until_ = now + kConfirmS;
+        status_ = target.empty() ? "no module to command" : "press t again to TERMINATE " + target;
+        return true;
+      }
+      confirm_target_.clear();
+      set_state(module::State::Terminate);
+      return true;
+    }
     default: return false;
   }
 }

@@ -188,8 +188,11 @@ TEST(Controller, ModuleViewSendsManualStateCommandsToTheSelectedModule) {
   c.on_key(kUp, 0);
   c.on_key(kUp, 0);
   c.on_key(kUp, 0);
-  c.on_key(Key::ch('t'), 0);
-  c.on_key(Key::ch('r'), 0);
+  c.on_key(Key::ch('t'), 0);  // asks for confirmation first
+  EXPECT_EQ(r.states.size(), 2u);
+  EXPECT_EQ(c.status(), "press t again to TERMINATE driver_aux");
+  c.on_key(Key::ch('t'), 1.0);
+  c.on_key(Key::ch('r'), 1.0);
   ASSERT_EQ(r.states.size(), 4u);
   EXPECT_EQ(r.states[0], std::make_pair(std::string("driver_power"), State::Stop));
   EXPECT_EQ(r.states[1], std::make_pair(std::string("driver_rs485a"), State::Pause));
@@ -198,12 +201,36 @@ TEST(Controller, ModuleViewSendsManualStateCommandsToTheSelectedModule) {
   EXPECT_TRUE(r.motions.empty());  // arrows select here, they do not drive
 }
 
+TEST(Controller, TerminateNeedsASecondTOnTheSameModuleInTime) {
+  Model m;
+  Recorder r;
+  Controller c(m, r);
+  for (const char* name : {"driver_aux", "watchdog"}) {
+    common::data_state_t s{};
+    s.module = name;
+    s.state = static_cast<std::int8_t>(State::Run);
+    feed(m, "CM_DATA_STATE", s, 0);
+  }
+  c.on_key(Key::ch('3'), 0);
+  c.on_key(Key::ch('t'), 0);
+  c.on_key(Key::ch('t'), 3.5);  // too late: asks again
+  c.on_key(kDown, 3.6);
+  c.on_key(Key::ch('t'), 3.7);  // another module: asks again
+  EXPECT_TRUE(r.states.empty());
+  EXPECT_EQ(c.status(), "press t again to TERMINATE watchdog");
+  c.on_key(Key::ch('t'), 4.0);
+  ASSERT_EQ(r.states.size(), 1u);
+  EXPECT_EQ(r.states[0], std::make_pair(std::string("watchdog"), State::Terminate));
+  c.on_key(Key::ch('t'), 4.1);  // a third t starts over
+  EXPECT_EQ(r.states.size(), 1u);
+}
+
 TEST(Controller, ModuleCommandWithoutModulesSendsNothing) {
   Model m;
   Recorder r;
   Controller c(m, r);
   c.on_key(Key::ch('3'), 0);
-  c.on_key(Key::ch('t'), 0);
+  c.on_key(Key::ch('s'), 0);
   EXPECT_TRUE(r.states.empty());
   EXPECT_EQ(c.status(), "no module to command");
 }

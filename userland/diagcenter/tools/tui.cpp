@@ -88,7 +88,7 @@ void draw_footer(const Model& model, const Controller& ctl, const char* url) {
   static const char* help[] = {
       "arrows drive  space stop  m manual on/off  h home steering  o odo=0  q quit",
       "up/down scroll  c clear  space stop  1-4/F1-F4 view  q quit",
-      "up/down select  r RUN  p PAUSE  s STOP  t TERMINATE  space stop  q quit",
+      "up/down select  r RUN  p PAUSE  s STOP  t t TERMINATE  space stop  q quit",
       "up/down select  enter toggle  n on  f off  space stop  1-4 view  q quit",
   };
   std::string status = ctl.status();

@@ -8,7 +8,8 @@
 //   summary:  arrows drive (the first one switches manual driving on),
 //             m manual driving on/off, h home the steering, o reset odometry
 //   errors:   up/down scroll, c clear
-//   modules:  up/down select, r RUN, p PAUSE, s STOP, t TERMINATE
+//   modules:  up/down select, r RUN, p PAUSE, s STOP, t t TERMINATE
+//             (twice within 3 s: it keeps the module down)
 //   power:    up/down select, enter toggle, n on, f off
 //
 // While manual driving is on, tick() repeats LL_CMD_MOTION every
@@ -45,6 +46,7 @@ class Controller {
  public:
   static constexpr double kMotionRepeatS = 0.1;
   static constexpr int kDefaultPowerOutputs = 8;  // the PSC1's
+  static constexpr double kConfirmS = 3.0;        // TERMINATE: second t within this
 
   Controller(Model& model, CommandSink& sink, DriveLimits limits = {})
       : model_(model), sink_(sink), limits_(limits) {}
@@ -75,7 +77,7 @@ class Controller {
  private:
   bool summary_key(const Key& k, double now);
   bool errors_key(const Key& k);
-  bool modules_key(const Key& k);
+  bool modules_key(const Key& k, double now);
   bool power_key(const Key& k);
   void send_motion(double now);
   void publish_motion();
@@ -94,6 +96,8 @@ class Controller {
   int power_row_ = 0;
   std::size_t error_scroll_ = 0;
   std::string status_;
+  std::string confirm_target_;  // TERMINATE asked once for this module ...
+  double confirm_until_ = 0;    // ... and confirmed by a second t until then
   unsigned long motions_sent_ = 0;
 };
 
