@@ -96,6 +96,8 @@ tap_ok "up, up, left: the title shows MANUAL +0.20 m/s +5 deg" \
 tap_ok "the summary's command line (read back from LCM) shows v +0.20 steer +5.0" \
 	wait_screen '^Command +v \+0\.20 m/s steer +\+5\.0 by us' 5
 wait "$OBS" "$PRB"
+tap_diag "the summary view while driving:"
+screen | sed 's/^/#| /'
 tap_ok "another LCM client sees LL_CMD_MOTION 0.2 m/s, 0.087 rad from diagnostic_center" \
 	grep -q 'cmd_v=0.200 cmd_steer=0.087 .*cmd_from=diagnostic_center' "$STACK_RUN/obs-drive.txt"
 # driver_canbus quick-stops after 1 s without a command: no gap may reach it.
