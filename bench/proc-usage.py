@@ -63,13 +63,13 @@ def read_kv(path):
 
 
 def guest_usage(pid):
-    """(Rss kB, Pss kB) of the smaps entries inside the guest's address space.
+    """(Rss, Pss, USS) in kB of the smaps entries inside the guest's address space.
 
     qemu-user reserves the guest's whole address space as its first (lowest)
     mapping; every guest mapping is carved out of it. None if the layout is
     not that (no file mapping inside the window).
     """
-    rss = pss = 0
+    rss = pss = uss = 0
     lo = None
     inside = False
     files_inside = 0
@@ -87,7 +87,9 @@ def guest_usage(pid):
                 rss += int(head[1])
             elif inside and head[0] == "Pss:":
                 pss += int(head[1])
-    return (rss, pss) if files_inside else None
+            elif inside and head[0] in ("Private_Clean:", "Private_Dirty:"):
+                uss += int(head[1])
+    return (rss, pss, uss) if files_inside else None
 
 
 def breakdown(name, pid, guest, top):
@@ -95,8 +97,10 @@ def breakdown(name, pid, guest, top):
     anonymous (thread stacks, malloc arenas, LCM buffers); the guest's
     mappings only with guest."""
     groups = {}
+    huge = []  # (mapping size, AnonHugePages) of anonymous mappings holding huge pages
     lo = None
     key = None
+    size = 0
     with open(f"/proc/{pid}/smaps") as f:
         for line in f:
             head = line.split()
@@ -104,12 +108,17 @@ def breakdown(name, pid, guest, top):
                 start, end = (int(x, 16) for x in head[0].split("-"))
                 lo = start if lo is None else lo
                 key = None
+                size = (end - start) // 1024
                 if not guest or end <= lo + GUEST_SPACE:
                     key = os.path.basename(head[5]) if len(head) >= 6 else "[anonymous]"
             elif key and head[0] == "Pss:":
                 groups[key] = groups.get(key, 0) + int(head[1])
+            elif key and head[0] == "AnonHugePages:" and int(head[1]):
+                huge.append((size, int(head[1])))
     best = sorted(groups.items(), key=lambda kv: -kv[1])[:top]
     print(f"pss of {name}: " + ", ".join(f"{k} {v}" for k, v in best) + f" (kB; all {sum(groups.values())})")
+    for size, kb in huge:
+        print(f"huge pages of {name}: {kb} kB in an anonymous mapping of {size} kB")
 
 
 def sample_memory(pid, guest):
@@ -124,7 +133,7 @@ def sample_memory(pid, guest):
     }
     if guest:
         g = guest_usage(pid)
-        m["grss"], m["gpss"] = g if g else (-1, -1)
+        m["grss"], m["gpss"], m["guss"] = g if g else (-1, -1, -1)
     return m
 
 
@@ -186,7 +195,8 @@ def main():
     print(f"window {wall:.1f} s, CLK_TCK {hz}, memory in kB: the largest of samples every {SAMPLE_S:.0f} s; "
           f"ratios: {'guest ' if a.guest else ''}Pss / 8 MB, CPU (user + system) / 2 % of one core")
     if a.guest:
-        mem_cols = [("qemu_VmRSS", "rss"), ("-idle_qemu", "extra"), ("guest_Rss", "grss"), ("guest_Pss", "gpss")]
+        mem_cols = [("qemu_VmRSS", "rss"), ("-idle_qemu", "extra"), ("guest_Rss", "grss"), ("guest_Pss", "gpss"),
+                    ("guest_USS", "guss")]
         judged_key = "gpss"
     else:
         mem_cols = [("VmRSS", "rss"), ("VmHWM", "hwm"), ("Pss", "pss"), ("USS", "uss"), ("AnonHuge", "thp")]
@@ -220,9 +230,11 @@ def main():
                [tot_g, f"{tot_u:.2f}", f"{tot_s:.2f}", f"{pct:.2f}", f"{judged / RSS_TARGET_KB:.3f}", f"{pct / CPU_TARGET_PCT:.3f}"]))
     if a.guest:
         if base:
-            print(f"idle qemu-arm (a program that only pause()s): VmRSS {base['rss']} kB, guest Rss {base['grss']} kB, guest Pss {base['gpss']} kB")
+            print(f"idle qemu-arm (a program that only pause()s): VmRSS {base['rss']} kB, guest Rss {base['grss']} kB, "
+                  f"guest Pss {base['gpss']} kB, guest USS {base['guss']} kB")
         print(f"memory total (sum of guest Pss, the target's measure) {mb(judged):.2f} MB = {judged / RSS_TARGET_KB:.2f} of 8 MB")
         print(f"memory total (sum of guest Rss, shared libraries once per process) {mb(tot['grss']):.2f} MB = {tot['grss'] / RSS_TARGET_KB:.2f} of 8 MB")
+        print(f"memory total (sum of guest USS, private pages only) {mb(tot['guss']):.2f} MB = {tot['guss'] / RSS_TARGET_KB:.2f} of 8 MB")
         print(f"emulator total (sum of qemu-arm VmRSS, not a measure of the ARM programs) {mb(tot['rss']):.2f} MB")
     else:
         print(f"memory total (sum of Pss, the target's measure) {mb(judged):.2f} MB = {judged / RSS_TARGET_KB:.2f} of 8 MB")
