@@ -6,80 +6,15 @@
 # commanded speed; driving into the east wall stops the robot at the wall
 # and engages the PSC1's PAUSE, seen by rs485ctl watch on the power link; a
 # quick stop releases it. The true pose comes from SIM_DATA_POSE.
-. "$VMTEST_REPO/tests/vm/modules/lib.sh"
-. "$VMTEST_REPO/tests/vm/rs485/common.inc"
+. "$(dirname "$0")/lib.sh"
 
-RS=$VMTEST_BUILD/userland/robotsim
-ROBOT_SIM=$RS/robot-sim
-POSE=$RS/robot-sim-pose
-CANOPENCTL=$VMTEST_BUILD/userland/canopen/canopenctl
-RS485CTL=$VMTEST_BUILD/userland/rs485/rs485ctl
-CONF=$VMTEST_REPO/userland/robotsim/conf
-IF=vcan0
-
-cleanup() {
-	bg_kill_all
-	ip link del "$IF" 2>/dev/null
-	modprobe -r vcan can_raw can 2>/dev/null
-	rs485_cleanup
-	net_teardown
-}
-rs485_setup "$SIMBIN/rs485-sim" "$ROBOT_SIM" "$POSE" "$CANOPENCTL" "$RS485CTL"
-trap cleanup EXIT
-net_setup || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
-modprobe n_rs485 || { echo "Bail out! modprobe n_rs485"; exit 1; }
-if ! modprobe vcan || ! ip link add dev "$IF" type vcan || ! ip link set up "$IF"; then
-	echo "Bail out! cannot set up $IF"
-	exit 1
-fi
-if ! start_sim "$VMTEST_REPO/tests/vm/daemons/boards.yaml"; then
-	echo "Bail out! rs485-sim did not start"
-	sed 's/^/# /' "$SCR/sim.err"
-	exit 1
-fi
+robotsim_up "$RS485CTL"
 tap_plan 12
-
-ctl() { "$CANOPENCTL" -i "$IF" -t 1000 "$@"; }
-# pose: one SIM_DATA_POSE line (the latest the robot published).
-pose() { "$POSE" -n 1 -t 5; }
-val() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p" | head -1; }
-close_to() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
-# cond 'SHELL CONDITION': for tap_ok with && between checks.
-cond() { eval "$1"; }
-# wait_status NODE MASK SECONDS: until the statusword has every bit of MASK
-# (canopenctl takes a second or so per call under TCG); prints the last one.
-wait_status() {
-	local i st
-	for ((i = 0; i < $3; i++)); do
-		st=$(ctl read "$1" 6041 u16)
-		(( (${st%% *} & $2) == $2 )) && break
-		sleep 1
-	done
-	echo "$st"
-}
-# wait_exit PID SECONDS: the exit status of a background process, 255 if it did not end in time.
-wait_exit() {
-	local i
-	for ((i = 0; i < $2 * 10; i++)); do
-		if ! kill -0 "$1" 2>/dev/null; then
-			wait "$1"
-			return $?
-		fi
-		sleep 0.1
-	done
-	return 255
-}
 
 # The example robot, 4 degrees left at power-on, 6.1 m from the east wall
 # (front bumper at x = 3.9, wall at x = 10), heading east; nothing between.
-sed -e 's/^start: .*/start: {x: 3.0, y: 2.0, heading_deg: 0}/' \
-	-e 's/^\( *start_deg:\) 0 /\1 4 /' "$CONF/robot.yaml" >"$SCR/robot.yaml"
-grep -q 'start_deg: 4 ' "$SCR/robot.yaml" || { echo "Bail out! robot.yaml has no drives.steering.start_deg"; exit 1; }
-
-bg "$ROBOT_SIM" -m "$CONF/room.yaml" -r "$SCR/robot.yaml" --can "$IF" --rs485-control "$CTL" --lcm --print \
-	>"$SCR/robot.out" 2>"$SCR/robot.err"
-R=$LAST_BG
-wait_for "$SCR/robot.out" "^drives on $IF" 20 || { sed 's/^/# robot.err: /' "$SCR/robot.err"; exit 1; }
+robot_yaml 3.0 2.0 4
+start_robot
 
 p=$(pose)
 tap_diag "at start: $p"
@@ -125,9 +60,7 @@ h0=$(val "$p" heading_deg)
 bg "$RS485CTL" -b /dev/ttyTSU2 watch -a 0x01 -t 60s >"$SCR/watch.out" 2>"$SCR/watch.err"
 
 # EPOS (node 1): profile velocity, 993 rpm = 0.5 m/s.
-ctl write 1 6060 i8 3
-ctl write 1 60ff i32 993
-ctl enable 1 >/dev/null
+epos_velocity 993
 p1=$(pose)
 sleep 2
 p2=$(pose)

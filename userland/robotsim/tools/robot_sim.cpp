@@ -7,6 +7,8 @@
 // (--lcm), optionally printing pose, ranges and bearings once a second.
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -34,15 +36,27 @@ using namespace advee::robotsim;
 
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0, g_fault = 0, g_silence = 0;
-void on_signal(int sig) {
-  if (sig == SIGUSR1)
-    g_fault = 1;
-  else if (sig == SIGUSR2)
-    g_silence = 1;
-  else
-    g_stop = 1;
-}
+// SIGINT/SIGTERM stop, SIGUSR1/SIGUSR2 inject drive faults. They stay
+// blocked in every thread and are collected once per step: no handler can
+// interrupt a control-socket poll half-way (EINTR) and the drives' thread
+// never sees them.
+class BlockedSignals {
+ public:
+  BlockedSignals() {
+    sigemptyset(&set_);
+    for (int s : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2}) sigaddset(&set_, s);
+    pthread_sigmask(SIG_BLOCK, &set_, nullptr);
+  }
+  // The next pending signal, 0 if none.
+  int take() {
+    const timespec now{};
+    const int s = sigtimedwait(&set_, nullptr, &now);
+    return s > 0 ? s : 0;
+  }
+
+ private:
+  sigset_t set_;
+};
 
 // The drive input: "-" is stdin; a FIFO is opened read-write so that it
 // never reads end-of-file while no writer has it open.
@@ -191,6 +205,7 @@ int main(int argc, char** argv) {
       advee::rs485sim::control_ok(rs485_control, cmd);
     }));
   if (!max6615_dir.empty()) sinks.push_back(std::make_unique<Max6615DebugfsSink>(max6615_dir));
+  BlockedSignals signals;  // before the drives' thread starts: it inherits the mask
   std::unique_ptr<DriveSource> drive;
   CanDrives* can = nullptr;
   try {
@@ -225,12 +240,6 @@ int main(int argc, char** argv) {
   }
   TickOdometry odo(desc.chassis, robot.pose());
 
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-  sigaction(SIGUSR1, &sa, nullptr);
-  sigaction(SIGUSR2, &sa, nullptr);
 
   const double dt = 1.0 / rate;
   const long steps_per_publish = std::max(1L, std::lround(rate / publish_rate));
@@ -239,16 +248,19 @@ int main(int argc, char** argv) {
   const long total = duration > 0 ? std::lround(duration * rate) : -1;
   auto next = std::chrono::steady_clock::now();
   try {
-    for (long i = 1; !g_stop && (total < 0 || i <= total); ++i) {
-      if (can && g_fault) {
-        g_fault = 0;
-        std::printf("EPOS: inject EMCY 0x4210\n");
-        can->inject_fault(desc.drives.propulsion_node, 0x4210);
+    bool stop = false;
+    for (long i = 1; !stop && (total < 0 || i <= total); ++i) {
+      for (int sig; (sig = signals.take()) != 0;) {
+        if (sig == SIGUSR1 && can) {
+          std::printf("EPOS: inject EMCY 0x4210\n");
+          can->inject_fault(desc.drives.propulsion_node, 0x4210);
+        } else if (sig == SIGUSR2 && can) {
+          std::printf("drives: heartbeat %s\n", can->toggle_heartbeat_silence() ? "silent" : "on");
+        } else if (sig == SIGINT || sig == SIGTERM) {
+          stop = true;
+        }
       }
-      if (can && g_silence) {
-        g_silence = 0;
-        std::printf("drives: heartbeat %s\n", can->toggle_heartbeat_silence() ? "silent" : "on");
-      }
+      if (stop) break;
       const DriveCommand cmd = drive->command(robot.time());
       robot.step(cmd.speed_mps, cmd.steering_rad, dt);
 #ifdef ADVEE_ROBOTSIM_LCM

@@ -1,0 +1,98 @@
+# SPDX-License-Identifier: GPL-2.0
+# Helpers of the robotsim VM suite (sourced): vcan0, the simulated FPGA with
+# rs485-sim and the robot's boards (tests/vm/daemons/boards.yaml), LCM on the
+# loopback, robot-sim with its drives on vcan0, canopenctl, the true pose.
+. "$VMTEST_REPO/tests/vm/modules/lib.sh"
+. "$VMTEST_REPO/tests/vm/rs485/common.inc"
+
+RS=$VMTEST_BUILD/userland/robotsim
+ROBOT_SIM=$RS/robot-sim
+POSE=$RS/robot-sim-pose
+CANOPENCTL=$VMTEST_BUILD/userland/canopen/canopenctl
+RS485CTL=$VMTEST_BUILD/userland/rs485/rs485ctl
+CONF=$VMTEST_REPO/userland/robotsim/conf
+IF=vcan0
+
+robotsim_cleanup() {
+	bg_kill_all
+	ip link del "$IF" 2>/dev/null
+	modprobe -r vcan can_raw can 2>/dev/null
+	rs485_cleanup
+	net_teardown
+}
+
+# robotsim_up PROGRAM...: everything but robot-sim; bails out if a program
+# is missing or something does not come up.
+robotsim_up() {
+	rs485_setup "$SIMBIN/rs485-sim" "$ROBOT_SIM" "$POSE" "$CANOPENCTL" "$@"
+	trap robotsim_cleanup EXIT
+	net_setup || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
+	modprobe n_rs485 || { echo "Bail out! modprobe n_rs485"; exit 1; }
+	if ! modprobe vcan || ! ip link add dev "$IF" type vcan || ! ip link set up "$IF"; then
+		echo "Bail out! cannot set up $IF"
+		exit 1
+	fi
+	if ! start_sim "$VMTEST_REPO/tests/vm/daemons/boards.yaml"; then
+		echo "Bail out! rs485-sim did not start"
+		sed 's/^/# /' "$SCR/sim.err"
+		exit 1
+	fi
+}
+
+# robot_yaml X Y START_DEG: the example robot heading east at (X, Y), its
+# steering START_DEG left at power-on, into $SCR/robot.yaml.
+robot_yaml() {
+	sed -e "s/^start: .*/start: {x: $1, y: $2, heading_deg: 0}/" \
+		-e "s/^\( *start_deg:\) 0 /\1 $3 /" "$CONF/robot.yaml" >"$SCR/robot.yaml"
+	grep -q "start_deg: $3 " "$SCR/robot.yaml" || { echo "Bail out! robot.yaml has no drives.steering.start_deg"; exit 1; }
+}
+
+# start_robot: robot-sim on $SCR/robot.yaml with its drives on $IF, the
+# sensors to rs485-sim, the true pose on LCM; $R is its pid.
+start_robot() {
+	bg "$ROBOT_SIM" -m "$CONF/room.yaml" -r "$SCR/robot.yaml" --can "$IF" --rs485-control "$CTL" --lcm --print \
+		>"$SCR/robot.out" 2>"$SCR/robot.err"
+	R=$LAST_BG
+	wait_for "$SCR/robot.out" "^drives on $IF" 20 || { sed 's/^/# robot.err: /' "$SCR/robot.err"; exit 1; }
+}
+
+ctl() { "$CANOPENCTL" -i "$IF" -t 1000 "$@"; }
+# pose: one SIM_DATA_POSE line (the latest the robot published).
+pose() { "$POSE" -n 1 -t 5; }
+# val LINE KEY: the value of KEY=... in a line.
+val() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p" | head -1; }
+close_to() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
+# cond 'SHELL CONDITION': for tap_ok with && between checks.
+cond() { eval "$1"; }
+
+# wait_status NODE MASK SECONDS: until the statusword has every bit of MASK
+# (canopenctl takes a second or so per call under TCG); prints the last one.
+wait_status() {
+	local i st
+	for ((i = 0; i < $3; i++)); do
+		st=$(ctl read "$1" 6041 u16)
+		(( (${st%% *} & $2) == $2 )) && break
+		sleep 1
+	done
+	echo "$st"
+}
+
+# epos_velocity RPM: the EPOS (node 1) in profile velocity at RPM, enabled.
+epos_velocity() {
+	ctl write 1 6060 i8 3
+	ctl write 1 60ff i32 "$1"
+	ctl enable 1 >/dev/null
+}
+
+# wait_exit PID SECONDS: the exit status of a background process, 255 if it did not end in time.
+wait_exit() {
+	local i
+	for ((i = 0; i < $2 * 10; i++)); do
+		if ! kill -0 "$1" 2>/dev/null; then
+			wait "$1"
+			return $?
+		fi
+		sleep 0.1
+	done
+	return 255
+}
