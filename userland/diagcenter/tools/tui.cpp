@@ -207,9 +207,25 @@ void draw_modules_brief(const Model& model, double now, int top, int width, int 
   if (model.modules().empty()) put_w(r, 0, width, "  (no CM_DATA_STATE yet)", A_DIM);
 }
 
+// CiA 402 state names, short enough for the summary's column.
+std::string short_state(const std::string& s) {
+  if (s == "operation enabled") return "enabled";
+  if (s == "switch on disabled") return "sw-on-disabled";
+  if (s == "ready to switch on") return "ready";
+  if (s == "quick stop active") return "quick-stop";
+  if (s == "fault reaction active") return "fault-reaction";
+  return s;
+}
+
 void draw_summary(const Model& model, double now) {
-  const int w = COLS >= 80 ? 40 : COLS;
+  // Left column 39 wide, a blank, the ranges from column 41.
+  const int w = COLS >= 80 ? 39 : COLS;
   const int bottom = content_bottom();
+  if (LINES < 24 || COLS < 40) {
+    // The fixed rows and the module list would overlap: say so instead.
+    put(1, 0, f("the summary needs 40x24 or more (now %dx%d); 80x24 adds the ranges", COLS, LINES), A_BOLD);
+    return;
+  }
   // Rows for the module list: what is left above the 12 fixed rows.
   const int fixed = 12;
   const int list_rows = std::max(1, bottom - fixed - 1 - 1);
@@ -245,7 +261,7 @@ void draw_summary(const Model& model, double now) {
                          stale_mark(d.age(now), stale_after_s(msgs::kDataDrives.rate_hz)), a);
     std::string states;
     for (std::size_t i = 0; i < static_cast<std::size_t>(d.msg.num_drives); ++i)
-      states += (d.msg.axis[i] == lowlevel::data_drives_t::AXIS_PROPULSION ? "EPOS " : "IclA ") + d.msg.state[i] +
+      states += (d.msg.axis[i] == lowlevel::data_drives_t::AXIS_PROPULSION ? "EPOS " : "IclA ") + short_state(d.msg.state[i]) +
                 (d.msg.homed[i] ? " H" : "") + (d.msg.fault[i] ? f(" F%04X", static_cast<unsigned>(d.msg.error_code[i])) : "") + "  ";
     put_w(r++, 0, w, " " + states, a | (d.msg.stopped ? color(kRed) : A_NORMAL));
     if (d.msg.stopped)
@@ -259,7 +275,7 @@ void draw_summary(const Model& model, double now) {
 
   const auto pause = model.pause_engaged();
   if (!pause)
-    put_w(r++, 0, w, "PAUSE    (no LL_DATA_POWER / LL_EVENT_STOP)", A_DIM);
+    put_w(r++, 0, w, "PAUSE    (no LL_DATA_POWER)", A_DIM);
   else if (*pause)
     put_w(r++, 0, w, "PAUSE    ENGAGED", color(kRed) | A_REVERSE | A_BOLD);
   else
@@ -317,7 +333,7 @@ void draw_summary(const Model& model, double now) {
                        model.errors().back().msg.module.c_str(), model.errors().back().msg.text.c_str()),
           model.errors().back().msg.severity >= common::error_t::SEVERITY_ERROR ? color(kRed) : color(kYellow));
 
-  if (COLS >= 80) draw_ranges(model, now, 1, w + 1, bottom, COLS - w - 1);
+  if (COLS >= 80) draw_ranges(model, now, 1, w + 2, bottom, COLS - w - 2);
 }
 
 // --- errors ----------------------------------------------------------------
