@@ -21,7 +21,7 @@ while [ $# -gt 0 ]; do
 	case $1 in
 	--for) for_=$2; shift 2 ;;
 	--for=*) for_=${1#--for=}; shift ;;
-	-h|--help) sed -n '3,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '4,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "demo.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
