@@ -122,11 +122,19 @@ struct BridgeServer::Impl {
   void on_open(Hdl h) {
     if (stopping) return;
     auto& client = clients[h];
-    // The history in order, straight to the socket (it is bounded, and the
-    // queue would coalesce it); then the newest of everything.
-    std::error_code ec;
-    for (const auto& payload : history.payloads()) {
-      server.send(h, payload, websocketpp::frame::opcode::text, ec);
+    // The history as one frame, {"channel":"WEB_HISTORY","messages":[...]},
+    // straight to the socket (it is bounded, and the queue would coalesce
+    // it): the page takes it in one go. Then the newest of everything.
+    if (history.size() > 0) {
+      std::string bundle = R"({"channel":"WEB_HISTORY","messages":[)";
+      for (const auto& payload : history.payloads()) {
+        bundle += payload;
+        bundle += ',';
+      }
+      bundle.back() = ']';
+      bundle += '}';
+      std::error_code ec;
+      server.send(h, bundle, websocketpp::frame::opcode::text, ec);
       if (ec) return;
     }
     for (const auto& [key, payload] : snapshot) client.queue.push(key, payload);

@@ -168,7 +168,16 @@ const handlers = {
   WEB_BRIDGE(m) {
     st.bridge = m;
   },
+  // The bridge's last minutes, in order, as one frame when the page connects.
+  WEB_HISTORY(m) {
+    for (const x of m.messages || []) dispatch(x);
+  },
 };
+
+function dispatch(m) {
+  const h = handlers[m.channel];
+  if (h) h(m);
+}
 
 function onMessage(ev) {
   let m;
@@ -177,8 +186,7 @@ function onMessage(ev) {
   } catch (e) {
     return;
   }
-  const h = handlers[m.channel];
-  if (h) h(m);
+  dispatch(m);
   scheduleDraw();
 }
 
