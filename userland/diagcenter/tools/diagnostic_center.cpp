@@ -55,13 +55,17 @@ bool drain(lcm::LCM& lcm) {
   }
 }
 
-// Wait up to timeout_s for LCM or stdin; false when LCM failed.
-bool wait_input(lcm::LCM& lcm, bool with_stdin, double timeout_s) {
+enum class Wait { Ok, LcmFailed, TerminalGone };
+
+// Wait up to timeout_s for LCM or stdin and handle the LCM messages.
+Wait wait_input(lcm::LCM& lcm, bool with_stdin, double timeout_s) {
   pollfd fds[2] = {{lcm.getFileno(), POLLIN, 0}, {STDIN_FILENO, POLLIN, 0}};
   const int ms = std::max(0, static_cast<int>(std::ceil(timeout_s * 1000)));
   const int r = ::poll(fds, with_stdin ? 2 : 1, ms);
-  if (r > 0 && (fds[0].revents & POLLIN)) return drain(lcm);
-  return true;  // timeout, a key, or EINTR (a signal)
+  if (r > 0 && (fds[0].revents & POLLIN) && !drain(lcm)) return Wait::LcmFailed;
+  // A hung-up terminal without SIGHUP would wake poll() at once forever.
+  if (r > 0 && with_stdin && (fds[1].revents & (POLLHUP | POLLERR | POLLNVAL))) return Wait::TerminalGone;
+  return Wait::Ok;  // timeout, messages, a key, or EINTR (a signal)
 }
 
 int run_text(lcm::LCM& lcm, Model& model, double duration_s, double period_s, const std::string& url) {
@@ -75,7 +79,7 @@ int run_text(lcm::LCM& lcm, Model& model, double duration_s, double period_s, co
       next += period_s;
       if (next > end + 1e-6) break;
     }
-    if (!wait_input(lcm, false, std::min(next, end) - mono_now())) {
+    if (wait_input(lcm, false, std::min(next, end) - mono_now()) != Wait::Ok) {
       std::cerr << kName << ": LCM failed while receiving\n";
       return 1;
     }
@@ -113,7 +117,9 @@ int run_tui(lcm::LCM& lcm, Model& model, const DriveLimits& limits, const std::s
     if (ctl.quit()) break;
     // Wake for the next 10 Hz motion command, the next redraw, a key or LCM.
     const double wake = std::min(next_draw, mono_now() + Controller::kMotionRepeatS / 2);
-    if (!wait_input(lcm, true, wake - mono_now())) {
+    const Wait w = wait_input(lcm, true, wake - mono_now());
+    if (w == Wait::TerminalGone) break;
+    if (w == Wait::LcmFailed) {
       ctl.shutdown();
       return 1;
     }
