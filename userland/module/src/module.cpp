@@ -2,6 +2,7 @@
 #include "advee/module/module.hpp"
 
 #include <poll.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -34,6 +35,13 @@ Module::Module(ModuleOptions opts)
     : opts_(std::move(opts)),
       signals_(blocked_signals(opts_)),
       announce_timer_(opts_.announce_period) {
+  // No transparent huge pages for a module (Debian's x86 kernels have THP
+  // "always"): a thread's 8 MB stack otherwise gets a 2 MB page on its first
+  // touch, a quarter of the whole stack's memory budget (bench/daemons.sh,
+  // docs/daemons.md "Resource use"). Process-wide, also for threads started
+  // before, inherited by children; a kernel without THP (the TS-7800's) just
+  // keeps the flag.
+  prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
   // An empty URL lets LCM apply LCM_DEFAULT_URL.
   lcm_ = std::make_unique<lcm::LCM>(opts_.lcm_url);
   if (!lcm_->good())

@@ -4,6 +4,7 @@
 // manual-only STOP, TERMINATE by command and by SIGTERM, ModuleExit codes.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -52,6 +53,13 @@ class ModuleTest : public testing::Test {
     }
   }
 };
+
+TEST_F(ModuleTest, TurnsTransparentHugePagesOff) {
+  // A 2 MB huge page in a thread stack would cost a module more than all
+  // its own memory (docs/daemons.md "Resource use").
+  Module m(opts());
+  EXPECT_EQ(prctl(PR_GET_THP_DISABLE, 0, 0, 0, 0), 1);
+}
 
 TEST_F(ModuleTest, StartsInInitAndAnnouncesTheStartState) {
   Module m(opts());
