@@ -122,9 +122,13 @@ struct BridgeServer::Impl {
   void on_open(Hdl h) {
     if (stopping) return;
     auto& client = clients[h];
-    // The history as one frame, {"channel":"WEB_HISTORY","messages":[...]},
-    // straight to the socket (it is bounded, and the queue would coalesce
-    // it): the page takes it in one go. Then the newest of everything.
+    // First the newest of everything (small: the page shows the present at
+    // once), then the history as one frame, {"channel":"WEB_HISTORY",
+    // "messages":[...]}, for trails and plots; straight to the socket (it is
+    // bounded, and the queue would coalesce it).
+    for (const auto& [key, payload] : snapshot) client.queue.push(key, payload);
+    flush(h, client);
+    send_status(h, client);
     if (history.size() > 0) {
       std::string bundle = R"({"channel":"WEB_HISTORY","messages":[)";
       for (const auto& payload : history.payloads()) {
@@ -135,11 +139,7 @@ struct BridgeServer::Impl {
       bundle += '}';
       std::error_code ec;
       server.send(h, bundle, websocketpp::frame::opcode::text, ec);
-      if (ec) return;
     }
-    for (const auto& [key, payload] : snapshot) client.queue.push(key, payload);
-    flush(h, client);
-    send_status(h, client);
   }
 
   void forget(Hdl h) {

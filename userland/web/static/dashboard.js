@@ -49,7 +49,15 @@ function startPose() {
 // Time series are on the messages' own clock (utime), so that replayed
 // history and live data line up; st.latest is the newest time seen.
 function pushSample(arr, t, v) {
-  if (arr.length && t < arr[arr.length - 1][0]) return;  // replay overlap
+  if (arr.length && t <= arr[arr.length - 1][0]) {
+    // Older than the newest: history arriving after the present. Insert in
+    // time order (the arrays hold at most a minute of samples).
+    let i = arr.length;
+    while (i > 0 && arr[i - 1][0] > t) i--;
+    if (i > 0 && arr[i - 1][0] === t) return;
+    arr.splice(i, 0, [t, v]);
+    return;
+  }
   arr.push([t, v]);
   if (!st.latest || t > st.latest) {
     st.latest = t;
@@ -85,12 +93,12 @@ const handlers = {
     pushSample(st.speeds.odo, m.utime / 1e6, m.speed_mps);
   },
   // The bridge integrates LL_DATA_ODO (so a page opened late agrees).
-  WEB_ODO_POSE(m) {
-    st.odo = {x: m.x_m, y: m.y_m, h: m.heading_rad};
+  WEB_ODO_POSE(m, replay) {
+    if (!replay || !st.odo) st.odo = {x: m.x_m, y: m.y_m, h: m.heading_rad};
     trailAdd(st.odoTrail, m.x_m, m.y_m);
   },
-  SIM_DATA_POSE(m) {
-    st.truth = {x: m.x_m, y: m.y_m, h: m.heading_rad};
+  SIM_DATA_POSE(m, replay) {
+    if (!replay || !st.truth) st.truth = {x: m.x_m, y: m.y_m, h: m.heading_rad};
     trailAdd(st.truthTrail, m.x_m, m.y_m);
   },
   LL_DATA_SRFS(m) {
@@ -104,10 +112,11 @@ const handlers = {
     $("cmd-speed").textContent = fmt(m.speed_mps, 2) + " m/s";
     $("cmd-steering").textContent = fmt(deg(m.steering_rad), 1) + "\u00b0";
   },
-  LL_DATA_DRIVES(m) {
+  LL_DATA_DRIVES(m, replay) {
     const t = m.utime / 1e6;
     pushSample(st.speeds.cmd, t, m.cmd_speed_mps);
     pushSample(st.speeds.act, t, m.speed_mps);
+    if (replay) return;
     $("cmd-speed").textContent = fmt(m.cmd_speed_mps, 2) + " m/s";
     $("act-speed").textContent = fmt(m.speed_mps, 2) + " m/s";
     $("cmd-steering").textContent = fmt(deg(m.cmd_steering_rad), 1) + "\u00b0";
@@ -120,11 +129,12 @@ const handlers = {
     if (m.stopped) parts.push(`stopped: ${m.stop_reason || "?"}`);
     $("drives").textContent = parts.join(" \u00b7 ");
   },
-  LL_DATA_TEMPERATURE(m) {
+  LL_DATA_TEMPERATURE(m, replay) {
     const t = m.utime / 1e6;
     (m.label || []).forEach((label, i) => {
       if (!st.temps.has(label)) st.temps.set(label, []);
       pushSample(st.temps.get(label), t, m.celsius[i]);
+      if (replay) return;
       let cell = $("temp-" + label);
       if (!cell) {
         const row = el("tr");
@@ -168,15 +178,22 @@ const handlers = {
   WEB_BRIDGE(m) {
     st.bridge = m;
   },
-  // The bridge's last minutes, in order, as one frame when the page connects.
+  // The bridge's last minutes, in order, as one frame right after the
+  // newest values: they fill the trails and plots, the present stays. The
+  // trails are rebuilt so that they end at the present pose.
   WEB_HISTORY(m) {
-    for (const x of m.messages || []) dispatch(x);
+    const odoNow = st.odoTrail.slice(), truthNow = st.truthTrail.slice();
+    st.odoTrail = [];
+    st.truthTrail = [];
+    for (const x of m.messages || []) dispatch(x, true);
+    for (const [x, y] of odoNow) trailAdd(st.odoTrail, x, y);
+    for (const [x, y] of truthNow) trailAdd(st.truthTrail, x, y);
   },
 };
 
-function dispatch(m) {
+function dispatch(m, replay) {
   const h = handlers[m.channel];
-  if (h) h(m);
+  if (h) h(m, !!replay);
 }
 
 function onMessage(ev) {

@@ -162,20 +162,20 @@ TEST_F(Bridge, NewClientGetsTheNewestOfEachKeyFirst) {
             R"({"channel":"CM_DATA_STATE","module":"b","state":3})");
 }
 
-TEST_F(Bridge, NewClientGetsTheHistoryInOrderThenTheSnapshot) {
+TEST_F(Bridge, NewClientGetsTheSnapshotThenTheHistoryInOneFrame) {
   for (int i = 0; i < 5; ++i)
     broadcast("WEB_ODO_POSE", R"({"channel":"WEB_ODO_POSE","i":)" + std::to_string(i) + "}", true);
   broadcast("CM_DATA_STATE/a", R"({"channel":"CM_DATA_STATE","module":"a"})");  // not kept
   auto s = websocket();
+  // The snapshot: the newest per key, in key order; the bridge's status.
+  EXPECT_EQ(read_frame(s), R"({"channel":"CM_DATA_STATE","module":"a"})");
+  EXPECT_EQ(read_frame(s), R"({"channel":"WEB_ODO_POSE","i":4})");
+  EXPECT_EQ(read_frame(s).rfind(R"({"channel":"WEB_BRIDGE")", 0), 0u);
+  // Then the history, oldest first, in one frame.
   EXPECT_EQ(read_frame(s),
             R"({"channel":"WEB_HISTORY","messages":[{"channel":"WEB_ODO_POSE","i":0},)"
             R"({"channel":"WEB_ODO_POSE","i":1},{"channel":"WEB_ODO_POSE","i":2},)"
             R"({"channel":"WEB_ODO_POSE","i":3},{"channel":"WEB_ODO_POSE","i":4}]})");
-  // Then the snapshot: the newest per key, in key order.
-  EXPECT_EQ(read_frame(s), R"({"channel":"CM_DATA_STATE","module":"a"})");
-  EXPECT_EQ(read_frame(s), R"({"channel":"WEB_ODO_POSE","i":4})");
-  // And the bridge's status at once (the page shows it from the start).
-  EXPECT_EQ(read_frame(s).rfind(R"({"channel":"WEB_BRIDGE")", 0), 0u);
 }
 
 TEST_F(Bridge, SlowClientGetsTheNewestAndDropsAreCounted) {
