@@ -5,7 +5,7 @@
 # at the front bumper's contact robot-sim raises PAUSE (BR-PSC1 PAUSE event,
 # drive motor unpowered), driver_power publishes LL_EVENT_STOP, driver_canbus
 # quick-stops the drives (LL_DATA_DRIVES stopped), and the robot stands at
-# the wall (within 5 mm of where it touched; ground truth speed 0 at the
+# the wall (within 10 mm of where it touched; ground truth speed 0 at the
 # end) although LL_CMD_MOTION still asks for 0.8 m/s; it never passes it.
 . "$(dirname "$0")/lib.sh"
 stack_require canbus robot-can sim-pose
@@ -50,14 +50,16 @@ t_cmd_end=$(grep '^LL_CMD_MOTION .*speed=0.8000' "$OUT" | tail -1)
 t_cmd_end=$(stack_field "$t_cmd_end" t)
 # Each released PAUSE lets driver_canbus follow the planner again, so the
 # robot may creep a step into contact and PAUSE again (LL_EVENT_STOP
-# repeats): it must stay where it touched, not drive on.
+# repeats): it must stay where it touched, not drive on. The contact is
+# found up to one simulation step (0.8 m/s x 10 ms = 8 mm) before the wall,
+# hence 10 mm.
 read -r moving total xspread < <(grep '^SIM_DATA_POSE ' "$OUT" | awk -v a="$t_stop" -v b="$t_cmd_end" -v xc="$(stack_field "$contact" x)" '
 	{ for (i = 1; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] } }
 	f["t"] > a + 0.5 && f["t"] <= b { n++; if (f["speed"] > 0.001 || f["speed"] < -0.001) m++; d = f["x"] - xc; if (d < 0) d = -d; if (d > s) s = d }
 	END { printf "%d %d %.4f\n", m, n, s }')
 tap_diag "poses after the stop while 0.8 m/s was still commanded: $total, moving in $moving, farthest $xspread m from the contact point"
-tap_ok "the robot stays at the wall (within 5 mm of the contact point) while LL_CMD_MOTION still asks for 0.8 m/s" \
-	awk -v n="$total" -v s="$xspread" 'BEGIN { exit !(n >= 5 && s <= 0.005) }'
+tap_ok "the robot stays at the wall (within 10 mm of the contact point) while LL_CMD_MOTION still asks for 0.8 m/s" \
+	awk -v n="$total" -v s="$xspread" 'BEGIN { exit !(n >= 5 && s <= 0.010) }'
 last=$(grep '^SIM_DATA_POSE ' "$OUT" | tail -1)
 tap_ok "at the end the ground truth speed is 0 ($(stack_field "$last" speed))" stack_close "$(stack_field "$last" speed)" 0 0.001
 tap_finish
