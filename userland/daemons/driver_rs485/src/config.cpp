@@ -89,7 +89,7 @@ Rs485Config parse_rs485_config(const ConfigNode& root) {
   }
   if (n.has("so1")) {
     const auto e = n.child("so1");
-    e.allow_only({"address", "width", "wheel_radius_m", "ticks_per_rev", "track_m", "wheelbase_m", "encoders"});
+    e.allow_only({"address", "width", "max_speed_mps", "wheel_radius_m", "ticks_per_rev", "track_m", "wheelbase_m", "encoders"});
     So1Board s;
     s.address = address(e, "address");
     s.width = e.get<unsigned>("width", s.width);
@@ -102,6 +102,14 @@ Rs485Config parse_rs485_config(const ConfigNode& root) {
     const auto where = e.get<std::string>("encoders", "front");
     if (where != "front" && where != "rear") e.fail("encoders", "front (steered wheels) or rear");
     g.encoders_on_front = where == "front";
+    s.max_speed_mps = positive(e, "max_speed_mps", s.max_speed_mps);
+    // Gaps beyond the limit are dropped: two poll periods must fit into it,
+    // or the odometry would drop most intervals.
+    const double gap_s = std::chrono::duration<double>(unambiguous_tick_gap(g, s.width, s.max_speed_mps)).count();
+    if (gap_s < 2 / c.rate_hz)
+      e.fail("width", std::to_string(s.width) + "-byte counters can wrap ambiguously within " +
+                          std::to_string(gap_s) + " s at max_speed_mps: less than two poll periods at rate_hz " +
+                          "(use wider counters, a higher rate_hz or a lower max_speed_mps)");
     c.so1 = s;
   }
   if (n.has("sbs1")) {

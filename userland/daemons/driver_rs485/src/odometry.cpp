@@ -54,4 +54,13 @@ BodySpeed AckermannOdometry::from_wheel_speeds(double left_mps, double right_mps
   return {v, p / v};
 }
 
+std::chrono::nanoseconds unambiguous_tick_gap(const ChassisGeometry& g, unsigned width_bytes,
+                                              double max_wheel_speed_mps) {
+  if ((width_bytes != 1 && width_bytes != 2 && width_bytes != 4) || !(max_wheel_speed_mps > 0))
+    throw std::invalid_argument("tick gap: width must be 1, 2 or 4 bytes and the speed > 0");
+  const double half_range = std::ldexp(1.0, 8 * static_cast<int>(width_bytes) - 1);
+  const double max_ticks_per_s = max_wheel_speed_mps / (2 * std::numbers::pi * g.wheel_radius_m) * g.ticks_per_rev;
+  return std::chrono::nanoseconds(static_cast<std::int64_t>(half_range / max_ticks_per_s * 1e9));
+}
+
 }  // namespace advee::driver_rs485

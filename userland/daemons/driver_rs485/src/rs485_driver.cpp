@@ -26,9 +26,9 @@ Rs485Driver::Rs485Driver(module::Module& m, Rs485Config cfg, rs485::Transport& b
     so1_.emplace(bus, cfg_.so1->address);
     so1_health_.emplace(m_.errors(), "odometry", cfg_.so1->address);
     odo_.emplace(cfg_.so1->geometry);
-    // Beyond this the counters may have wrapped unseen (or the robot was
-    // paused): start a new interval instead of publishing a wrong speed.
-    max_odo_gap_ = std::max<std::chrono::nanoseconds>(1s, 3 * period);
+    // The board counts on through any gap, so an interval may span missed
+    // polls; only from this gap on could the counters have wrapped unseen.
+    max_odo_gap_ = unambiguous_tick_gap(cfg_.so1->geometry, cfg_.so1->width, cfg_.so1->max_speed_mps);
   }
   if (cfg_.sbs1) {
     sbs1_.emplace(bus, cfg_.sbs1->address);
@@ -92,7 +92,12 @@ void Rs485Driver::poll_so1() {
   so1_health_->record("GET_TICKS", raw ? std::error_code() : raw.error(), node_status_);
   if (!raw) return;
   const auto now = Clock::now();
-  if (!last_counts_ || now - last_counts_at_ > max_odo_gap_) {
+  const bool ambiguous = last_counts_ && now - last_counts_at_ >= max_odo_gap_;
+  if (ambiguous)
+    m_.errors().report(module::Severity::Warning, module::ErrorType::Device, kErrOdoGap,
+                       "odometry: " + std::to_string(std::chrono::duration<double>(now - last_counts_at_).count()) +
+                           " s since the last BR-SO1 reading, the counters may have wrapped: its ticks are dropped");
+  if (!last_counts_ || ambiguous) {
     ticks_.reset();
     last_counts_ = ticks_.update(*raw);  // a new baseline, no interval yet
     last_counts_at_ = now;

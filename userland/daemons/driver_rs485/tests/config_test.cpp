@@ -65,6 +65,11 @@ TEST(Rs485Config, DefaultsAndBeaconIds) {
   EXPECT_EQ(c.bus.baud, 115200u);
   EXPECT_EQ(c.bus.retries, 1u);
   EXPECT_EQ(c.sbs1->beacon_ids, (std::vector<std::uint8_t>{1, 2, 7}));
+  const auto o = parse("  bus: {device: a}\n  so1: {address: 0x20}\n");
+  EXPECT_EQ(o.so1->max_speed_mps, 1.5);
+  // Slow enough for 8-bit counters at 4 Hz: 128 ticks are 0.078 m, 0.65 s at 0.12 m/s.
+  const auto slow = parse("  bus: {device: a}\n  so1: {address: 0x20, width: 1, max_speed_mps: 0.12}\n");
+  EXPECT_EQ(slow.so1->width, 1u);
 }
 
 TEST(Rs485Config, MistakesNameTheKey) {
@@ -72,6 +77,10 @@ TEST(Rs485Config, MistakesNameTheKey) {
   EXPECT_NE(error_of(bus + "  sd1: [{address: 0xff}]\n").find("address"), std::string::npos);
   EXPECT_NE(error_of(bus + "  so1: {address: 0x20, width: 3}\n").find("width"), std::string::npos);
   EXPECT_NE(error_of(bus + "  so1: {address: 0x20, track_m: 0}\n").find("track_m"), std::string::npos);
+  EXPECT_NE(error_of(bus + "  so1: {address: 0x20, max_speed_mps: -1}\n").find("max_speed_mps"), std::string::npos);
+  // 8-bit counters wrap within 0.05 s at 1.5 m/s (0.1 m wheels, 1024 ticks/rev):
+  // every interval at 4 Hz would be ambiguous.
+  EXPECT_NE(error_of(bus + "  so1: {address: 0x20, width: 1}\n").find("wrap ambiguously"), std::string::npos);
   EXPECT_NE(error_of(bus + "  so1: {address: 0x20, encoders: middle}\n").find("encoders"), std::string::npos);
   EXPECT_NE(error_of(bus + "  sd1: [{address: 16, srfs: [{index: 8, id: 1}]}]\n").find("index"),
             std::string::npos);

@@ -65,6 +65,7 @@ struct BusA {
   std::int64_t left = 65500, right = 65500;  // wraps soon: the driver must not notice
   int tick_step = 100;
   bool rear_silent = false;
+  bool so1_silent = false;  // GET_TICKS times out; the board still counts
   std::map<int, int> requests;  // address -> count
 
   rs485::Result respond(const rs485::Request& r) {
@@ -83,6 +84,7 @@ struct BusA {
       return FakeTransport::ack(d);
     }
     if (r.addr == 0x20 && r.instr == rs485::so1::instr::kGetTicks) {
+      if (so1_silent) return FakeTransport::fail(rs485::Outcome::timeout);
       left += tick_step;
       right += 2 * tick_step;
       std::vector<std::uint8_t> d;
@@ -92,13 +94,22 @@ struct BusA {
     }
     return FakeTransport::fail(rs485::Outcome::unknown_instruction);
   }
+  void set_so1_silent(bool silent) {
+    std::lock_guard l(mu);
+    so1_silent = silent;
+  }
+  void roll(std::int64_t ticks) {  // the wheels turn while nobody reads
+    std::lock_guard l(mu);
+    left += ticks;
+    right += 2 * ticks;
+  }
   int count(int addr) {
     std::lock_guard l(mu);
     return requests[addr];
   }
 };
 
-Rs485Config bus_a_config() {
+Rs485Config bus_a_config(const std::string& so1_extra = "") {
   return parse_rs485_config(module::ConfigNode::parse(
       "module: {name: driver_rs485a, lcm_url: 'memq://', print_severity: none, send_severity: notice}\n"
       "driver_rs485:\n"
@@ -107,7 +118,8 @@ Rs485Config bus_a_config() {
       "  sd1:\n"
       "    - {name: front, address: 0x10, srfs: [{index: 0, id: 4}, {index: 2, id: 6}], first_ir_id: 0}\n"
       "    - {name: rear, address: 0x11, first_srf_id: 8, first_ir_id: 2}\n"
-      "  so1: {address: 0x20, wheel_radius_m: 0.1, ticks_per_rev: 1000, track_m: 0.5, wheelbase_m: 0.6}\n"));
+      "  so1: {address: 0x20, wheel_radius_m: 0.1, ticks_per_rev: 1000, track_m: 0.5, wheelbase_m: 0.6" +
+      so1_extra + "}\n"));
 }
 
 }  // namespace
@@ -204,6 +216,59 @@ TEST(Rs485Driver, PauseStopsPollingAndRunResumes) {
   // After the pause a new baseline: no interval spans the pause.
   ASSERT_GT(rx.odo.size(), odo_before);
   for (std::size_t i = odo_before; i < rx.odo.size(); ++i) EXPECT_LT(rx.odo[i].interval_s, 0.15);
+}
+
+// The BR-SO1 does not answer for `gap`, while the wheels roll `rolled` ticks
+// (left; right twice as many); returns the odometry published after it.
+std::vector<lowlevel::data_odo_t> odometry_after_gap(Rs485Config cfg, std::chrono::milliseconds gap,
+                                                     std::int64_t rolled, Rx& rx) {
+  BusA a;
+  FakeTransport t([&](const rs485::Request& r) { return a.respond(r); });
+  module::Module m(cfg.module);
+  rx.subscribe(m.lcm());
+  Rs485Driver d(m, cfg, t);
+  m.request_state(module::State::Run, false, "test");
+  spin(m, 100ms);
+  a.set_so1_silent(true);
+  spin(m, 30ms);  // a poll in flight may still have answered
+  const auto before = rx.odo.size();
+  spin(m, gap);
+  a.roll(rolled);
+  a.set_so1_silent(false);
+  spin(m, 100ms);
+  rx.subs.clear();  // they hold on to the module's LCM
+  return {rx.odo.begin() + static_cast<std::ptrdiff_t>(before), rx.odo.end()};
+}
+
+TEST(Rs485Driver, OdometryKeepsTheTicksOfAGapWithoutAmbiguity) {
+  // 2.5 s without an answer: 5000 ticks (3.1 m, 1.3 m/s on the left wheel)
+  // is far from the 32768 of an ambiguous 16-bit wrap at 1.5 m/s (13.7 s).
+  Rx rx;
+  const auto after = odometry_after_gap(bus_a_config(), 2500ms, 5000, rx);
+  ASSERT_GE(after.size(), 2u);
+  const auto& o = after.front();
+  EXPECT_EQ(o.ticks_left, 5000 + 100);  // the gap plus the poll that ended it
+  EXPECT_EQ(o.ticks_right, 10000 + 200);
+  // The interval spans the whole gap, so the speed is the mean over it.
+  EXPECT_GT(o.interval_s, 2.5);
+  EXPECT_LT(o.interval_s, 3.0);
+  const auto want = AckermannOdometry(bus_a_config().so1->geometry).from_ticks(5100, 10200, o.interval_s);
+  EXPECT_DOUBLE_EQ(o.speed_mps, want.speed_mps);
+  for (std::size_t i = 1; i < after.size(); ++i) EXPECT_EQ(after[i].ticks_left, 100);
+  EXPECT_EQ(rx.errors_numbered(kErrOdoGap), 0);
+}
+
+TEST(Rs485Driver, OdometryDropsAGapThatCouldHideAWrap) {
+  // At 40 m/s the 16-bit counters could wrap by half in 0.51 s: a 0.8 s gap
+  // is ambiguous, so it starts a new baseline and says so.
+  Rx rx;
+  const auto after = odometry_after_gap(bus_a_config(", max_speed_mps: 40"), 800ms, 5000, rx);
+  ASSERT_GE(after.size(), 1u);
+  for (const auto& o : after) {
+    EXPECT_EQ(o.ticks_left, 100);
+    EXPECT_LT(o.interval_s, 0.2);
+  }
+  EXPECT_EQ(rx.errors_numbered(kErrOdoGap), 1);
 }
 
 TEST(Rs485Driver, SilentBoardIsReportedOnceAndTheOtherStillPublished) {

@@ -4,8 +4,10 @@
 // variant, and invalid geometry.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "advee/driver_rs485/odometry.hpp"
 
@@ -105,4 +107,19 @@ TEST(Odometry, InvalidGeometryAndIntervalAreRejected) {
   EXPECT_THROW(AckermannOdometry{g}, std::invalid_argument);
   AckermannOdometry o(robot());
   EXPECT_THROW(o.from_ticks(10, 10, 0), std::invalid_argument);
+}
+
+TEST(Odometry, UnambiguousGapIsHalfTheCounterRangeAtTopSpeed) {
+  // 1.5 m/s on 0.125 m wheels with 2048 ticks/rev: 3911.5 ticks/s.
+  const double ticks_per_s = 1.5 / (2 * std::numbers::pi * 0.125) * 2048;
+  const auto seconds = [](std::chrono::nanoseconds d) { return std::chrono::duration<double>(d).count(); };
+  EXPECT_NEAR(seconds(unambiguous_tick_gap(robot(), 2, 1.5)), 32768 / ticks_per_s, 1e-6);  // 8.38 s
+  EXPECT_NEAR(seconds(unambiguous_tick_gap(robot(), 1, 1.5)), 128 / ticks_per_s, 1e-6);
+  EXPECT_NEAR(seconds(unambiguous_tick_gap(robot(), 4, 1.5)), 2147483648.0 / ticks_per_s, 1e-3);
+  // A 2.5 s gap at top speed stays well inside 16-bit counters.
+  EXPECT_GT(seconds(unambiguous_tick_gap(robot(), 2, 1.5)), 2.5);
+  // Twice as fast: half as long.
+  EXPECT_NEAR(seconds(unambiguous_tick_gap(robot(), 2, 3.0)), 16384 / ticks_per_s, 1e-6);
+  EXPECT_THROW(unambiguous_tick_gap(robot(), 3, 1.5), std::invalid_argument);
+  EXPECT_THROW(unambiguous_tick_gap(robot(), 2, 0), std::invalid_argument);
 }

@@ -35,6 +35,9 @@ struct Sd1Board {
 struct So1Board {
   std::uint8_t address = 0;
   unsigned width = 2;          // GET_TICKS counter width in bytes: 1, 2, 4
+  // Fastest ground speed of an encoder wheel (the chassis' top speed): sets
+  // how long a gap between readings may be before a wrap could hide in it.
+  double max_speed_mps = 1.5;
   ChassisGeometry geometry;
 };
 

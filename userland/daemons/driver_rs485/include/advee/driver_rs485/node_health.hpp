@@ -27,6 +27,7 @@ inline constexpr int kErrTransaction = 1;  // a transaction failed (text names t
 inline constexpr int kErrPassive = 2;      // node error-passive
 inline constexpr int kErrOff = 3;          // node off: no longer polled
 inline constexpr int kErrRecovered = 4;    // answers again / polled again (notice)
+inline constexpr int kErrOdoGap = 6;       // odometry ticks of a too long gap dropped (warning; 5 is a bad beacon id)
 
 class NodeHealth {
  public:

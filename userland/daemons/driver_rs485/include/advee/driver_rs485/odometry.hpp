@@ -20,6 +20,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <chrono>
 
 namespace advee::driver_rs485 {
 
@@ -58,5 +59,13 @@ class AckermannOdometry {
   double metres_per_tick_;
   Eigen::Vector2d left_pos_, right_pos_;  // encoder wheels relative to the reference point
 };
+
+// The longest time between two GET_TICKS readings over which their
+// difference is unambiguous: a wheel rolling at `max_wheel_speed_mps` stays
+// below half the range of a `width_bytes` counter (TickAccumulator takes the
+// shortest way round). A longer gap could hide a wrap; a shorter one only
+// misses ticks if the board reset.
+std::chrono::nanoseconds unambiguous_tick_gap(const ChassisGeometry& g, unsigned width_bytes,
+                                              double max_wheel_speed_mps);
 
 }  // namespace advee::driver_rs485
