@@ -238,11 +238,13 @@ void DriveController::motion(double speed, double steering) {
   pending_speed_ = v;
   ensure_enabled(prop_);
 
-  if (!homed_) {
+  // During homing (or while it waits for the enable) the target is held, not
+  // refused: the latest one is applied once the IclA is back in profile position.
+  const bool homing_runs = homing_ || homing_requested_;
+  if (!homed_ && !homing_runs) {
     if (!warned_not_homed_)
       report(Severity::Warning, ErrorType::Unknown, kErrNotHomed,
-             "steering target refused: the steering is not homed (LL_CMD_HOMING axis=steering" +
-                 std::string(homing_ ? ", running" : "") + ")");
+             "steering target refused: the steering is not homed (LL_CMD_HOMING axis=steering)");
     warned_not_homed_ = true;
     return;
   }
@@ -257,12 +259,14 @@ void DriveController::motion(double speed, double steering) {
     warned_clamp_ = false;
   }
   pending_steering_ = s;
+  if (homing_runs) return;
   ensure_enabled(steer_);
 }
 
-void DriveController::send_pending_steering() {
-  if (!pending_steering_ || moving_ || held() || homing_ || !homed_) return;
+void DriveController::send_pending_steering(bool retry) {
+  if (!pending_steering_ || moving_ || held() || homing_ || homing_requested_ || !homed_) return;
   if (steer_.drive->axis().state() != State::kOperationEnabled) return;
+  if (steer_.drive->mode() != canopen::cia402::Mode::kProfilePosition) return;
   const double rad = *pending_steering_;
   pending_steering_.reset();
   cmd_steering_ = rad;
@@ -270,8 +274,14 @@ void DriveController::send_pending_steering() {
   if (sent_steering_ && std::abs(rad - *sent_steering_) * std::abs(cfg_.icla.units_per_rad) < 0.5) return;
   moving_ = true;
   sent_steering_ = rad;
-  icla_.set_angle(rad, [this](std::error_code ec) {
+  icla_.set_angle(rad, [this, rad, retry](std::error_code ec) {
     moving_ = false;
+    if (ec == AxisError::kSetPointTimeout && !retry && steer_.online && !held()) {
+      // One more handshake before giving up; a newer target wins over this one.
+      sent_steering_.reset();
+      if (!pending_steering_) pending_steering_ = rad;
+      return send_pending_steering(true);
+    }
     if (ec) {
       sent_steering_.reset();
       if (ec != AxisError::kCancelled && steer_.online && !held())
@@ -292,8 +302,17 @@ void DriveController::home_steering() {
            std::string("LL_CMD_HOMING refused: ") + (paused_ ? "module paused" : "LL_EVENT_STOP engaged"));
     return;
   }
-  if (homing_) return;
+  if (homing_ || homing_requested_) {
+    // The planner's request during the start-up homing: restarting it would
+    // only throw away the progress, so it joins the running one.
+    if (!homing_joined_)
+      report(Severity::Notice, ErrorType::Device, kErrHoming,
+             "LL_CMD_HOMING while " + steer_.name + " homes: joins the running homing");
+    homing_joined_ = true;
+    return;
+  }
   homed_ = false;
+  homing_joined_ = false;
   homing_requested_ = true;
   ensure_enabled(steer_);
 }
@@ -301,13 +320,13 @@ void DriveController::home_steering() {
 void DriveController::start_homing() {
   homing_requested_ = false;
   homing_ = true;
-  pending_steering_.reset();
   sent_steering_.reset();
   report(Severity::Notice, ErrorType::Device, kErrHoming, steer_.name + ": homing");
   icla_.home([this](std::error_code ec) {
     homing_ = false;
     moving_ = false;
     if (ec) {
+      pending_steering_.reset();  // held for a homed steering only
       report(Severity::Error, ErrorType::Device, kErrHoming, steer_.name + ": homing failed: " + ec.message());
       return;
     }
@@ -318,6 +337,7 @@ void DriveController::start_homing() {
     cmd_steering_ = a.value_or(0);
     report(Severity::Notice, ErrorType::Device, kErrHoming,
            steer_.name + ": homed, steering at " + fmt("%.4f", a.value_or(0)) + " rad");
+    send_pending_steering();  // the latest target that arrived during the homing
   });
 }
 

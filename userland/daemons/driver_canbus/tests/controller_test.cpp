@@ -285,6 +285,68 @@ TEST_F(ControllerTest, HomeOnStartHomesTheSteering) {
   EXPECT_TRUE(ctl->steering_homed());
 }
 
+TEST_F(ControllerTest, HomingRequestDuringStartUpHomingJoinsItAndTheHeldSteeringTargetIsApplied) {
+  // The demo's overlap: home_on_start, the planner stand-in's LL_CMD_HOMING
+  // while that homing runs, and its steering commands right behind it.
+  auto c = robot_config();
+  c.home_on_start = true;
+  ASSERT_TRUE(start(c)) << start_error;
+  ASSERT_FALSE(ctl->steering_homed()) << "the start-up homing still runs";
+  ctl->home_steering();
+  ctl->home_steering();
+  stream(0.0, 0.05, 100ms);
+  ctl->motion(0.0, 0.1);  // the latest target before the homing ends
+  for (int i = 0; i < 10000 && !ctl->steering_homed(); ++i) tick();
+  ASSERT_TRUE(ctl->steering_homed());
+  run(1500ms);  // no further command: the held target alone must move the steering
+  EXPECT_EQ(icla_sim.od().get<std::int32_t>(0x607A), 1000);
+  EXPECT_NEAR(ctl->status().steering_rad, 0.1, 1e-4);
+  EXPECT_EQ(icla_sim.od().get<std::int8_t>(0x6061), 1) << "back in profile position";
+  int homing_started = 0, joined = 0;
+  for (const auto& r : reports) {
+    homing_started += r.number == kErrHoming && r.text == "icla (node 2): homing";
+    joined += r.number == kErrHoming && r.text.find("joins") != std::string::npos;
+  }
+  EXPECT_EQ(homing_started, 1) << "the second request does not restart the homing";
+  EXPECT_EQ(joined, 1) << "one notice for the joined request";
+  EXPECT_EQ(count(kErrNotHomed), 0) << "targets during the homing are held, not refused";
+  EXPECT_EQ(count(kErrDrive), 0) << "no failed set-point";
+
+  stream(0.0, -0.2, 800ms);
+  EXPECT_NEAR(ctl->status().steering_rad, -0.2, 1e-4) << "later commands follow as usual";
+}
+
+TEST_F(ControllerTest, AnUnacknowledgedSetPointIsRetriedOnceBeforeItIsReported) {
+  auto c = robot_config();
+  c.icla.drive.setpoint_timeout = 100ms;
+  c.icla.drive.heartbeat_tolerance = 10;  // the muted IclA stays online: only its acknowledge is lost
+  ASSERT_TRUE(start(c));
+  ASSERT_TRUE(home());
+  // The IclA's acknowledge is lost for 150 ms: the first handshake times out,
+  // the second one goes through.
+  bus.mute(iport, true);
+  ctl->motion(0, 0.2);
+  run(150ms);
+  bus.mute(iport, false);
+  run(1000ms);
+  EXPECT_NEAR(ctl->status().steering_rad, 0.2, 1e-4);
+  EXPECT_EQ(count(kErrDrive), 0);
+
+  // Lost for both handshakes (250 ms): reported.
+  bus.mute(iport, true);
+  ctl->motion(0, -0.1);
+  run(250ms);
+  bus.mute(iport, false);
+  run(200ms);
+  ASSERT_EQ(count(kErrDrive), 1);
+  EXPECT_EQ(count(kErrHeartbeatLost), 0);
+  for (const auto& r : reports) {
+    if (r.number == kErrDrive) {
+      EXPECT_NE(r.text.find("did not acknowledge the set-point"), std::string::npos) << r.text;
+    }
+  }
+}
+
 TEST_F(ControllerTest, EmcyAndFaultAreReportedAndTheNextCommandResetsTheFault) {
   ASSERT_TRUE(start());
   stream(0.5, 0, 300ms);

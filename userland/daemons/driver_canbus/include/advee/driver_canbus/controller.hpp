@@ -114,7 +114,8 @@ class DriveController final : public canopen::TimedService {
   void ensure_enabled(Unit& u);
   // Sends what waited for the drive: the speed, the homing, the steering.
   void on_enabled(Unit& u);
-  void send_pending_steering();
+  // retry: this is the second handshake after a set-point timeout.
+  void send_pending_steering(bool retry = false);
   void start_homing();
   void quick_stop_propulsion(const std::string& why);
   void quick_stop_all(const std::string& why);
@@ -139,6 +140,7 @@ class DriveController final : public canopen::TimedService {
   bool homed_ = false;
   bool homing_ = false;
   bool homing_requested_ = false;  // waits for the IclA to be enabled
+  bool homing_joined_ = false;     // a second request joined this homing (reported once)
   double cmd_speed_ = 0;
   double cmd_steering_ = 0;
   std::optional<double> pending_speed_;     // waiting for the EPOS to be enabled
