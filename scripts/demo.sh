@@ -13,6 +13,9 @@
 #                                path, diagnostic_center --text prints a
 #                                summary every 5 s; exit 0 when all went well
 #                                (`make demo FOR=30s`)
+#
+# The interactive demo also serves the web dashboard on the host at
+# http://127.0.0.1:8080/ (ADVEE_WEB_PORT=N another port, 0 none).
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
@@ -21,7 +24,7 @@ while [ $# -gt 0 ]; do
 	case $1 in
 	--for) for_=$2; shift 2 ;;
 	--for=*) for_=${1#--for=}; shift ;;
-	-h|--help) sed -n '4,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '4,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "demo.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
@@ -45,5 +48,13 @@ if [ -n "$for_" ]; then
 		exec "$TOP/tests/harness/vm-x86.sh" --lane demo --run "$TOP/tests/harness/demo-guest.sh"
 fi
 read -r rows cols < <(stty size)
+# The web dashboard's port on the host (ADVEE_WEB_PORT=0: none); skipped
+# when something on the host already listens there.
+web_port=${ADVEE_WEB_PORT:-8080}
+if [ "$web_port" != 0 ] && (exec 3<>"/dev/tcp/127.0.0.1/$web_port") 2>/dev/null; then
+	say "port $web_port is in use on this host: no web dashboard (ADVEE_WEB_PORT=N picks another)"
+	web_port=0
+fi
+[ "$web_port" != 0 ] && export VMTEST_HOSTFWD=$web_port
 VMTEST_APPEND="advee.demo=tui advee.rows=$rows advee.cols=$cols advee.term=${TERM:-vt100}" \
 	exec "$TOP/tests/harness/vm-x86.sh" --lane demo --interactive --run "$TOP/tests/harness/demo-guest.sh"

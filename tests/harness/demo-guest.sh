@@ -16,7 +16,7 @@
 # scripts/demo.sh sets them): advee.demo=tui|for:DURATION, advee.rows=N,
 # advee.cols=N, advee.term=TERM.
 set -u
-mode= for_= rows= cols= term=
+mode= for_= rows= cols= term= web_port=
 for word in $(cat /proc/cmdline); do
 	case $word in
 	advee.demo=tui) mode=tui ;;
@@ -24,6 +24,7 @@ for word in $(cat /proc/cmdline); do
 	advee.rows=*) rows=${word#*=} ;;
 	advee.cols=*) cols=${word#*=} ;;
 	advee.term=*) term=${word#*=} ;;
+	vmtest.hostfwd=*) web_port=${word#*=} ;;
 	esac
 done
 while [ $# -gt 0 ]; do
@@ -75,7 +76,22 @@ else
 	echo "robot-sim plays $(basename "$PATH_FILE") itself (no simulated CAN drives yet): LL_CMD_MOTION does not move it"
 fi
 
+# The web dashboard (docs/web-dashboard.md) when the host forwards a port to
+# the guest (scripts/demo.sh, interactive only): QEMU's user network, the
+# guest at 10.0.2.15; LCM stays on the loopback route.
+web_up() {
+	local web=$STACK_UL/web/advee-web
+	[ -n "$web_port" ] && [ -x "$web" ] || return 0
+	modprobe virtio_net && ip link set eth0 up && ip addr add 10.0.2.15/24 dev eth0 ||
+		{ echo "web dashboard: no guest network (virtio_net), not started"; return 0; }
+	stack_bg advee-web "$web" --listen "0.0.0.0:$web_port" --root "$STACK_USERLAND_SRC/web/static" \
+		--robot "$ROBOTSIM_CONF/robot.yaml" --map "$ROBOTSIM_CONF/room.yaml"
+	echo "Web dashboard: http://127.0.0.1:$web_port/ (open it on the host)"
+	sleep 2
+}
+
 if [ "$mode" = tui ]; then
+	web_up
 	# The path once, then the operator drives (arrow keys); standstill
 	# commands would fight the manual ones, so none after the path.
 	stack_drive "$PATH_FILE" "${drive_args[@]}" --hold 0

@@ -138,12 +138,30 @@ qemu=(qemu-system-x86_64 -machine pc -accel tcg -cpu "${VMTEST_CPU:-max}" -smp "
 append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.repo=$TOP vmtest.runner=$TOP/tests/harness/guest-run.sh${VMTEST_APPEND:+ $VMTEST_APPEND}"
 
 if [ -n "$run" ] && [ "$interactive" = 1 ]; then
+	# VMTEST_HOSTFWD=PORT: the guest's TCP PORT on the host's 127.0.0.1:PORT
+	# (the demo's web dashboard); user networking, no way out of the host.
+	if [ -n "${VMTEST_HOSTFWD:-}" ]; then
+		for i in "${!qemu[@]}"; do
+			[ "${qemu[i]}" = "-nic" ] && [ "${qemu[i + 1]}" = none ] &&
+				qemu[i + 1]="user,model=virtio-net-pci,restrict=on,hostfwd=tcp:127.0.0.1:$VMTEST_HOSTFWD-10.0.2.15:$VMTEST_HOSTFWD"
+		done
+		append+=" vmtest.hostfwd=$VMTEST_HOSTFWD"
+	fi
 	say "the guest's program gets this terminal; Ctrl-a x stops the VM"
 	exec "${qemu[@]}" -append "$append"
 fi
 start=$(date +%s)
-boot_vm "$shell" $((60 * slowdown)) "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
+# --run: the program's output as it is written (the guest writes its log
+# through the results share), not only once the VM is off.
+follow=
 if [ -n "$run" ]; then
-	cat "$results"/logs/main.*.log 2>/dev/null
+	tail -n +1 -F "$results/logs/main.$(basename "$run" .sh).log" 2>/dev/null &
+	follow=$!
+fi
+boot_vm "$shell" $((60 * slowdown)) "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
+if [ -n "$follow" ]; then
+	sleep 1	# tail -F polls once a second: let it print the last lines
+	kill "$follow" 2>/dev/null
+	wait "$follow" 2>/dev/null || true
 fi
 report_lane "$lane" "$results" "$vmdir/console.log" $(($(date +%s) - start))
