@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "advee/diagcenter/pose_integrator.hpp"
+#include "advee/pose_integrator.hpp"
 #include "advee/module/state.hpp"
 #include "common/error_t.hpp"
 #include "lowlevel/cmd_homing_t.hpp"

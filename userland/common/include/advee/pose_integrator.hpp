@@ -6,7 +6,7 @@
 // at 4 Hz a turn of 0.4 rad/s would otherwise drift outwards.
 #pragma once
 
-namespace advee::diagcenter {
+namespace advee {
 
 struct Pose {
   double x_m = 0;
@@ -34,4 +34,4 @@ class PoseIntegrator {
 
 double wrap_angle(double rad);  // to (-pi, pi]
 
-}  // namespace advee::diagcenter
+}  // namespace advee

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: GPL-2.0
-#include "advee/diagcenter/pose_integrator.hpp"
+#include "advee/pose_integrator.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-using advee::diagcenter::PoseIntegrator;
-using advee::diagcenter::wrap_angle;
+using advee::PoseIntegrator;
+using advee::wrap_angle;
 constexpr double kPi = std::numbers::pi;
 
 TEST(PoseIntegrator, StraightAheadAtFourHertz) {

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0
-#include "advee/diagcenter/pose_integrator.hpp"
+#include "advee/pose_integrator.hpp"
 
 #include <cmath>
 #include <numbers>
 
-namespace advee::diagcenter {
+namespace advee {
 
 double wrap_angle(double rad) {
   double a = std::remainder(rad, 2 * std::numbers::pi);  // [-pi, pi]
@@ -29,4 +29,4 @@ void PoseIntegrator::advance(double v, double w, double dt) {
   distance_m_ += std::abs(v) * dt;
 }
 
-}  // namespace advee::diagcenter
+}  // namespace advee
