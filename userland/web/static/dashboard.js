@@ -162,7 +162,7 @@ const handlers = {
     if (m.fan_fail) $("fans").dataset.fail = "1";
   },
   LL_DATA_POWER(m) {
-    $("battery-v").textContent = fmt(m.battery_v, 1) + " V";
+    $("battery-v").textContent = m.battery_v < 0 ? "battery not measured" : fmt(m.battery_v, 1) + " V";
     const box = $("outputs");
     box.replaceChildren();
     (m.on || []).forEach((on, i) => {
