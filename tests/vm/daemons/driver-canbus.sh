@@ -97,7 +97,7 @@ v=$(field "$moving" speed)
 tap_ok "0.5 m/s commanded: actual speed $v within 0.01 m/s" close_to "$v" 0.5 0.01
 tap_ok "EPOS RPDO4: target velocity 993 rpm (0.5 m/s, 26:1, r 0.125 m)" grep -q '501#0F00E1030000' "$SCR/candump.log"
 tap_is "steering refused until homed: one warning (number 4), no steering" \
-	"$(errors_numbered "$SCR/move.out" 4) $(field "$moving" steer) $(field "$moving" homed2)" "1 0.0000 0"
+	"$(errors_numbered "$SCR/move.out" 4) $(field "$moving" steering) $(field "$moving" homed2)" "1 0.0000 0"
 
 # 2. The command timeout: quick stop to node 1 on candump 1.0-1.5 s after
 # the last command (candump -L stamps are CLOCK_REALTIME like last_utime).
@@ -124,14 +124,14 @@ sleep 0.3
 "$PROBE" homing
 wait "$L"
 tap_is "LL_CMD_HOMING: steering homed (homed2=1, at 0 rad)" \
-	"$(drives "$SCR/home.out" homed2) $(drives "$SCR/home.out" steer)" "1 0.0000"
+	"$(drives "$SCR/home.out" homed2) $(drives "$SCR/home.out" steering)" "1 0.0000"
 "$PROBE" listen 3 LL_DATA_DRIVES >"$SCR/steer.out" &
 L=$!
 "$PROBE" motion 0.3 0.2 10 3 >/dev/null
 wait "$L"
 tap_diag "$(grep '^LL_DATA_DRIVES ' "$SCR/steer.out" | tail -1)"
 tap_ok "0.3 m/s again after the timeout: $(drives "$SCR/steer.out" speed)" close_to "$(drives "$SCR/steer.out" speed)" 0.3 0.01
-tap_ok "steering 0.2 rad: $(drives "$SCR/steer.out" steer)" close_to "$(drives "$SCR/steer.out" steer)" 0.2 0.001
+tap_ok "steering 0.2 rad: $(drives "$SCR/steer.out" steering)" close_to "$(drives "$SCR/steer.out" steering)" 0.2 0.001
 
 # after FILE LINE REGEX SECONDS: true once a line after line LINE of FILE
 # matches (event-driven: a loaded TCG guest runs 2-3x slower than nominal).

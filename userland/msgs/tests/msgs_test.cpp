@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "advee/msgs/channels.hpp"
+#include "advee/msgs/describe.hpp"
+#include "lowlevel/data_drives_t.hpp"
 #include "common/cmd_state_t.hpp"
 #include "common/data_state_t.hpp"
 #include "common/error_t.hpp"
@@ -143,6 +145,55 @@ TEST(Msgs, ChannelNamesFollowTheConvention) {
     // The type's package matches the prefix (LL -> lowlevel, CM -> common).
     EXPECT_EQ(ch.type.substr(0, ch.type.find('.')), prefix == "LL" ? "lowlevel" : "common") << n;
   }
+}
+
+}  // namespace
+
+// The listeners' text lines (advee/msgs/describe.hpp): what the VM tests grep.
+namespace {
+
+lcm::ReceiveBuffer buffer_of(std::vector<std::uint8_t>& bytes) {
+  lcm::ReceiveBuffer rb{};
+  rb.data = bytes.data();
+  rb.data_size = static_cast<std::uint32_t>(bytes.size());
+  return rb;
+}
+
+template <typename Msg>
+std::vector<std::uint8_t> encoded(const Msg& m) {
+  std::vector<std::uint8_t> b(static_cast<std::size_t>(m.getEncodedSize()));
+  m.encode(b.data(), 0, static_cast<int>(b.size()));
+  return b;
+}
+
+TEST(Describe, DrivesLineHasEveryKeyTheTestsRead) {
+  lowlevel::data_drives_t d{};
+  d.module = "driver_canbus";
+  d.num_drives = 2;
+  d.axis = {0, 1};
+  d.node = {1, 2};
+  d.state = {"operation enabled", "fault"};
+  d.fault = {false, true};
+  d.error_code = {0, 0x4210};
+  d.homed = {false, true};
+  d.speed_mps = 0.5;
+  d.steering_rad = 0.2;
+  d.stopped = true;
+  d.stop_reason = "command timeout";
+  auto bytes = encoded(d);
+  const auto line = advee::msgs::describe(buffer_of(bytes), "LL_DATA_DRIVES");
+  EXPECT_EQ(line.rfind("LL_DATA_DRIVES t=", 0), 0u) << line;
+  for (const char* kv : {" module=driver_canbus ", " speed=0.5000 ", " steering=0.2000 ", " stopped=1 ",
+                         " reason=command_timeout ", " node1=operation_enabled ", " fault2=1 ", " emcy2=16912 ",
+                         " homed2=1"})
+    EXPECT_NE(line.find(kv), std::string::npos) << kv << " in " << line;
+}
+
+TEST(Describe, ABrokenOrUnknownMessageSaysUndecoded) {
+  std::vector<std::uint8_t> junk{1, 2, 3};
+  const auto rb = buffer_of(junk);
+  EXPECT_NE(advee::msgs::describe(rb, "LL_DATA_ODO").find(" undecoded bytes=3"), std::string::npos);
+  EXPECT_NE(advee::msgs::describe(rb, "SOMETHING_ELSE").find(" undecoded bytes=3"), std::string::npos);
 }
 
 }  // namespace

@@ -17,11 +17,11 @@
 #include <cstring>
 #include <iostream>
 #include <lcm/lcm-cpp.hpp>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "advee/msgs/describe.hpp"
 #include "common/error_t.hpp"
 #include "lowlevel/cmd_homing_t.hpp"
 #include "lowlevel/cmd_motion_t.hpp"
@@ -46,65 +46,8 @@ std::int64_t utime() {
       .count();
 }
 
-template <typename T>
-bool decode(const lcm::ReceiveBuffer* rb, T& m) {
-  return m.decode(rb->data, 0, static_cast<int>(rb->data_size)) >= 0;
-}
-
-std::string num(double v, const char* fmt = "%.4f") {
-  char b[48];
-  std::snprintf(b, sizeof b, fmt, v);
-  return b;
-}
-
-// One token for a key=value line.
-std::string word(std::string s) {
-  for (char& c : s)
-    if (c == ' ' || c == '\n' || c == '\t') c = '_';
-  return s.empty() ? "-" : s;
-}
-
-std::string describe(const lcm::ReceiveBuffer* rb, const std::string& ch) {
-  std::ostringstream o;
-  o << ch << " t=" << num(mono_s(), "%.3f");
-  if (lowlevel::data_srfs_t m; ch == "LL_DATA_SRFS" && decode(rb, m)) {
-    o << " module=" << m.module << " srfs=" << m.num_srfs << " irs=" << m.num_irs;
-    for (int i = 0; i < m.num_srfs; ++i) o << " srf" << m.srf_id[i] << "=" << num(m.srf_range_m[i], "%.3f");
-    for (int i = 0; i < m.num_irs; ++i) o << " ir" << m.ir_id[i] << "=" << num(m.ir_range_m[i], "%.3f");
-  } else if (lowlevel::data_odo_t d; ch == "LL_DATA_ODO" && decode(rb, d)) {
-    o << " module=" << d.module << " ticks_left=" << d.ticks_left << " ticks_right=" << d.ticks_right
-      << " interval=" << num(d.interval_s) << " speed=" << num(d.speed_mps) << " yaw=" << num(d.yaw_rate_radps);
-  } else if (lowlevel::data_beacons_t b; ch == "LL_DATA_BEACONS" && decode(rb, b)) {
-    o << " module=" << b.module << " count=" << b.count;
-    for (int i = 0; i < b.count; ++i) o << " b" << b.id[i] << "=" << num(b.bearing_rad[i]);
-  } else if (lowlevel::data_power_t p; ch == "LL_DATA_POWER" && decode(rb, p)) {
-    unsigned mask = 0;
-    for (int i = 0; i < p.num_outputs; ++i) mask |= p.on[i] ? 1u << i : 0u;
-    o << " module=" << p.module << " outputs=" << p.num_outputs << " mask=" << mask
-      << " paused=" << int(p.paused);
-    for (int i = 0; i < p.num_outputs; ++i) o << " i" << i << "=" << num(p.current_a[i], "%.3f");
-  } else if (lowlevel::event_stop_t s; ch == "LL_EVENT_STOP" && decode(rb, s)) {
-    o << " module=" << s.module << " stop=" << int(s.stop) << " source=" << int(s.source)
-      << " age_us=" << (utime() - s.utime) << " rx_us=" << utime();
-  } else if (lowlevel::data_drives_t d; ch == "LL_DATA_DRIVES" && decode(rb, d)) {
-    o << " module=" << d.module << " speed=" << num(d.speed_mps) << " steer=" << num(d.steering_rad)
-      << " cmd_speed=" << num(d.cmd_speed_mps) << " cmd_steer=" << num(d.cmd_steering_rad)
-      << " stopped=" << int(d.stopped) << " reason=" << word(d.stop_reason) << " drives=" << d.num_drives;
-    for (int i = 0; i < d.num_drives; ++i)
-      o << " node" << int(d.node[i]) << "=" << word(d.state[i]) << " fault" << int(d.node[i]) << "="
-        << int(d.fault[i]) << " emcy" << int(d.node[i]) << "=" << d.error_code[i] << " homed" << int(d.node[i])
-        << "=" << int(d.homed[i]);
-  } else if (common::error_t e; ch == "CM_DATA_ERROR" && decode(rb, e)) {
-    o << " module=" << e.module << " number=" << e.number << " severity=" << int(e.severity)
-      << " fatal=" << int(e.fatal) << " text=" << word(e.text);
-  } else {
-    o << " bytes=" << rb->data_size;
-  }
-  return o.str();
-}
-
 struct Printer {
-  void on(const lcm::ReceiveBuffer* rb, const std::string& ch) { std::cout << describe(rb, ch) << std::endl; }
+  void on(const lcm::ReceiveBuffer* rb, const std::string& ch) { std::cout << advee::msgs::describe(*rb, ch) << std::endl; }
 };
 
 int usage() {
