@@ -37,6 +37,23 @@ bg() {
 	LAST_BG=$!
 }
 
+# close_to VALUE WANT TOLERANCE: |VALUE - WANT| <= TOLERANCE (numbers).
+close_to() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
+
+# wait_exit PID SECONDS: the exit status of a background process, 255 if it
+# did not end in time.
+wait_exit() {
+	local i
+	for ((i = 0; i < $2 * 10; i++)); do
+		if ! kill -0 "$1" 2>/dev/null; then
+			wait "$1"
+			return $?
+		fi
+		sleep 0.1
+	done
+	return 255
+}
+
 bg_kill_all() {
 	for p in $BG_PIDS; do
 		kill "$p" 2>/dev/null

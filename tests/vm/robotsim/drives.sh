@@ -19,7 +19,7 @@ start_robot
 p=$(pose)
 tap_diag "at start: $p"
 tap_ok "SIM_DATA_POSE: at (3, 2), steering 4 degrees before homing" \
-	cond "close_to '$(val "$p" x)' 3 0.001 && close_to '$(val "$p" steering_deg)' 4 0.01"
+	cond "close_to '$(field "$p" x)' 3 0.001 && close_to '$(field "$p" steering_deg)' 4 0.01"
 
 # IclA (node 2): homing onto the switch at straight ahead (method 17, 2000 units/s).
 ctl write 2 6060 i8 6
@@ -34,7 +34,7 @@ tap_ok "IclA homing attained (statusword bit 12)" test $((${st%% *} & 0x1000)) -
 pos=$(ctl read 2 6064 i32 | cut -d' ' -f1)
 tap_diag "0x6064 after homing: $pos"
 tap_ok "steering 0 (straight ahead) after homing, 0x6064 near 0" \
-	cond "close_to '$(val "$p" steering_deg)' 0 0.02 && close_to '$pos' 0 4"
+	cond "close_to '$(field "$p" steering_deg)' 0 0.02 && close_to '$pos' 0 4"
 
 # Profile position to 10 degrees left: 1745 units of 1/10000 rad.
 ctl write 2 6060 i8 1
@@ -46,15 +46,15 @@ sleep 1  # 1745 units at 3000 units/s
 wait_status 2 0x0400 15 >/dev/null  # target reached
 p=$(pose)
 tap_diag "turned: $p"
-tap_ok "steering follows the IclA: 10.0 degrees" close_to "$(val "$p" steering_deg)" 10 0.02
+tap_ok "steering follows the IclA: 10.0 degrees" close_to "$(field "$p" steering_deg)" 10 0.02
 ctl write 2 6040 u16 0x0f
 ctl write 2 607a i32 0
 ctl write 2 6040 u16 0x1f
 sleep 1
 wait_status 2 0x0400 15 >/dev/null
 p=$(pose)
-tap_ok "and back to straight ahead" close_to "$(val "$p" steering_deg)" 0 0.02
-h0=$(val "$p" heading_deg)
+tap_ok "and back to straight ahead" close_to "$(field "$p" steering_deg)" 0 0.02
+h0=$(field "$p" heading_deg)
 
 # The PSC1's events on the power link, from before the robot moves.
 bg "$RS485CTL" -b /dev/ttyTSU2 watch -a 0x01 -t 60s >"$SCR/watch.out" 2>"$SCR/watch.err"
@@ -66,13 +66,13 @@ sleep 2
 p2=$(pose)
 tap_diag "moving: $p1"
 tap_diag "moving: $p2"
-v=$(awk -v x1="$(val "$p1" x)" -v x2="$(val "$p2" x)" -v t1="$(val "$p1" t)" -v t2="$(val "$p2" t)" \
+v=$(awk -v x1="$(field "$p1" x)" -v x2="$(field "$p2" x)" -v t1="$(field "$p1" t)" -v t2="$(field "$p2" t)" \
 	'BEGIN { if (t2 > t1) printf "%.4f", (x2 - x1) / (t2 - t1) }')
-tap_diag "speed from the true pose: $v m/s over $(awk -v a="$(val "$p1" t)" -v b="$(val "$p2" t)" 'BEGIN { print b - a }') s"
+tap_diag "speed from the true pose: $v m/s over $(awk -v a="$(field "$p1" t)" -v b="$(field "$p2" t)" 'BEGIN { print b - a }') s"
 tap_ok "the robot moves east at the commanded 0.5 m/s (true pose, 1%; speed field 0.500; no contact yet)" \
-	cond "close_to '$v' 0.5 0.005 && close_to '$(val "$p2" speed)' 0.5 0.001 && test '$(val "$p2" pause)' = 0"
+	cond "close_to '$v' 0.5 0.005 && close_to '$(field "$p2" speed)' 0.5 0.001 && test '$(field "$p2" pause)' = 0"
 tap_ok "straight: heading and y unchanged" \
-	cond "close_to '$(val "$p2" heading_deg)' '$h0' 0.01 && close_to '$(val "$p2" y)' 2 0.001"
+	cond "close_to '$(field "$p2" heading_deg)' '$h0' 0.01 && close_to '$(field "$p2" y)' 2 0.001"
 
 # Into the wall: 6.1 m in ~12 s; PAUSE engaged by the front bumper.
 wait_for "$SCR/watch.out" "instr 0x40 .* 01 01" 40
@@ -81,10 +81,10 @@ sleep 1
 p=$(pose)
 tap_diag "at the wall: $p"
 tap_ok "stopped at the wall: 9.0 < x <= 9.1 (front bumper at 10.0), speed 0, PAUSE engaged" \
-	cond "awk -v x='$(val "$p" x)' 'BEGIN { exit !(x > 9.0 && x <= 9.1) }' && test '$(val "$p" speed) $(val "$p" engaged)' = '0.0000 1'"
+	cond "awk -v x='$(field "$p" x)' 'BEGIN { exit !(x > 9.0 && x <= 9.1) }' && test '$(field "$p" speed) $(field "$p" engaged)' = '0.0000 1'"
 sleep 1
 p3=$(pose)
-tap_is "still at the wall a second later (the drive still pushes)" "$(val "$p3" x) $(val "$p3" pause)" "$(val "$p" x) 1"
+tap_is "still at the wall a second later (the drive still pushes)" "$(field "$p3" x) $(field "$p3" pause)" "$(field "$p" x) 1"
 
 # driver_canbus answers LL_EVENT_STOP with a quick stop: the bumper frees, PAUSE releases.
 ctl quick-stop 1 >/dev/null

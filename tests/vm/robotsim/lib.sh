@@ -59,9 +59,6 @@ start_robot() {
 ctl() { "$CANOPENCTL" -i "$IF" -t 1000 "$@"; }
 # pose: one SIM_DATA_POSE line (the latest the robot published).
 pose() { "$POSE" -n 1 -t 5; }
-# val LINE KEY: the value of KEY=... in a line.
-val() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p" | head -1; }
-close_to() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
 # cond 'SHELL CONDITION': for tap_ok with && between checks.
 cond() { eval "$1"; }
 
@@ -84,15 +81,3 @@ epos_velocity() {
 	ctl enable 1 >/dev/null
 }
 
-# wait_exit PID SECONDS: the exit status of a background process, 255 if it did not end in time.
-wait_exit() {
-	local i
-	for ((i = 0; i < $2 * 10; i++)); do
-		if ! kill -0 "$1" 2>/dev/null; then
-			wait "$1"
-			return $?
-		fi
-		sleep 0.1
-	done
-	return 255
-}

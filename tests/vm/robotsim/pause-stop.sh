@@ -35,21 +35,21 @@ epos_velocity 993  # 0.5 m/s: at the wall in 2.2 s
 wait_for "$SCR/stop.out" '^LL_EVENT_STOP .* stop=1 ' 30
 s1=$(grep '^LL_EVENT_STOP ' "$SCR/stop.out" | head -1)
 tap_diag "$s1"
-tap_is "bumper: LL_EVENT_STOP stop=1 from the PSC1 (source 0)" "$(val "$s1" stop) $(val "$s1" source)" "1 0"
+tap_is "bumper: LL_EVENT_STOP stop=1 from the PSC1 (source 0)" "$(field "$s1" stop) $(field "$s1" source)" "1 0"
 sleep 1
 p=$(pose)
 tap_diag "at the wall: $p"
 tap_ok "robot at the wall with PAUSE engaged, speed 0" \
-	cond "awk -v x='$(val "$p" x)' 'BEGIN { exit !(x > 9.0 && x <= 9.1) }' && test '$(val "$p" speed) $(val "$p" engaged)' = '0.0000 1'"
+	cond "awk -v x='$(field "$p" x)' 'BEGIN { exit !(x > 9.0 && x <= 9.1) }' && test '$(field "$p" speed) $(field "$p" engaged)' = '0.0000 1'"
 tap_is "EPOS still turning (nobody stopped it yet): 993 rpm" "$(ctl read 1 606c i32 | cut -d' ' -f1)" 993
 
 ctl quick-stop 1 >/dev/null
 wait_for "$SCR/stop.out" '^LL_EVENT_STOP .* stop=0 ' 15
 s2=$(grep '^LL_EVENT_STOP ' "$SCR/stop.out" | sed -n 2p)
 tap_diag "$s2"
-tap_is "quick stop: PAUSE released, LL_EVENT_STOP stop=0" "$(val "$s2" stop)" 0
+tap_is "quick stop: PAUSE released, LL_EVENT_STOP stop=0" "$(field "$s2" stop)" 0
 p=$(pose)
-tap_is "released: PAUSE line off, robot still at the wall" "$(val "$p" engaged) $(val "$p" speed)" "0 0.0000"
+tap_is "released: PAUSE line off, robot still at the wall" "$(field "$p" engaged) $(field "$p" speed)" "0 0.0000"
 maxx=$(awk '/^t=/ { for (i = 1; i <= NF; i++) if ($i ~ /^x=/ && !seen[NR]++) { sub(/x=/, "", $i); if ($i > m) m = $i } } END { print m }' "$SCR/robot.out")
 tap_diag "largest x robot-sim printed: $maxx"
 tap_ok "never past the contact pose (x <= 9.1)" awk -v m="$maxx" 'BEGIN { exit !(m > 9.0 && m <= 9.1) }'

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "advee/diagcenter/sensor_layout.hpp"
+#include "advee/diagcenter/strprintf.hpp"
 #include "advee/msgs/channels.hpp"
 
 namespace advee::diagcenter::tui {
@@ -26,15 +27,6 @@ namespace {
 enum Pair : short { kTitle = 1, kRed, kYellow, kGreen };
 constexpr double kRadToDeg = 180 / std::numbers::pi;
 
-std::string f(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string f(const char* fmt, ...) {
-  char b[256];
-  va_list ap;
-  va_start(ap, fmt);
-  std::vsnprintf(b, sizeof b, fmt, ap);
-  va_end(ap);
-  return b;
-}
 
 attr_t color(Pair p) { return has_colors() ? COLOR_PAIR(p) : A_NORMAL; }
 
@@ -56,7 +48,7 @@ int content_bottom() { return LINES - 3; }  // last row of the content area
 // " (3.2 s old)" when the data is older than its channel's staleness limit.
 std::string stale_mark(double age, double limit) {
   if (age <= limit) return "";
-  return age > 999 ? " (old)" : f(" (%.0fs old)", age);
+  return age > 999 ? " (old)" : strprintf(" (%.0fs old)", age);
 }
 
 template <typename Msg>
@@ -74,12 +66,12 @@ void draw_title(const Controller& ctl) {
   int x = static_cast<int>(t.size());
   for (int i = 0; i < kViewCount; ++i) {
     const auto v = static_cast<View>(i);
-    const std::string label = f(" %d %s ", i + 1, view_name(v));
+    const std::string label = strprintf(" %d %s ", i + 1, view_name(v));
     put(0, x, label, v == ctl.view() ? A_REVERSE | A_BOLD : color(kTitle));
     x += static_cast<int>(label.size());
   }
   if (ctl.manual()) {
-    const auto m = f(" MANUAL %+.2f m/s %+.0f deg ", ctl.speed_mps(), ctl.steering_rad() * kRadToDeg);
+    const auto m = strprintf(" MANUAL %+.2f m/s %+.0f deg ", ctl.speed_mps(), ctl.steering_rad() * kRadToDeg);
     put(0, std::max(x + 1, COLS - static_cast<int>(m.size())), m, color(kRed) | A_REVERSE | A_BOLD);
   }
 }
@@ -93,7 +85,7 @@ void draw_footer(const Model& model, const Controller& ctl, const char* url) {
   };
   std::string status = ctl.status();
   if (model.messages() == 0)
-    status = f("no LCM message yet on %s", url);
+    status = strprintf("no LCM message yet on %s", url);
   move(LINES - 2, 0);
   clrtoeol();
   put(LINES - 2, 0, status, A_BOLD);
@@ -152,10 +144,10 @@ void draw_ranges(const Model& model, double now, int top, int left, int h, int w
   for (std::size_t i = 0; i < static_cast<std::size_t>(s.msg.num_srfs); ++i) {
     const int id = s.msg.srf_id[i];
     const float range = s.msg.srf_range_m[i];
-    const std::string label = range < 0 ? "--" : f("%.2f", range);
+    const std::string label = range < 0 ? "--" : strprintf("%.2f", range);
     const auto it = std::find_if(layout.begin(), layout.end(), [&](const SensorPlace& p) { return p.id == id; });
     if (it == layout.end()) {
-      others += f(" %d=%s", id, label.c_str());
+      others += strprintf(" %d=%s", id, label.c_str());
       continue;
     }
     const double hd = it->heading_deg / kRadToDeg;
@@ -177,8 +169,8 @@ void draw_ranges(const Model& model, double now, int top, int left, int h, int w
   }
   std::string ir = "IR";
   for (std::size_t i = 0; i < static_cast<std::size_t>(s.msg.num_irs); ++i)
-    ir += s.msg.ir_range_m[i] < 0 ? f(" %d:--", s.msg.ir_id[i])
-                                  : f(" %d:%.2f", s.msg.ir_id[i], s.msg.ir_range_m[i]);
+    ir += s.msg.ir_range_m[i] < 0 ? strprintf(" %d:--", s.msg.ir_id[i])
+                                  : strprintf(" %d:%.2f", s.msg.ir_id[i], s.msg.ir_range_m[i]);
   if (!others.empty()) ir += "  SRF" + others;
   put_w(top + h - 1, left, w, ir, stale);
 }
@@ -189,18 +181,18 @@ void draw_modules_brief(const Model& model, double now, int top, int width, int 
   int shown = 0;
   for (const auto& [name, mi] : model.modules()) {
     if (shown == max_rows) {
-      put_w(r, 0, width, f("  ... %zu more (view 3)", model.modules().size() - static_cast<std::size_t>(shown)), A_DIM);
+      put_w(r, 0, width, strprintf("  ... %zu more (view 3)", model.modules().size() - static_cast<std::size_t>(shown)), A_DIM);
       break;
     }
     const double age = now - mi.state_at;
     const bool stale = mi.state_at == kNever || age > kModuleStaleAfterS;
     const std::string st = mi.state ? std::string(module::to_string(*mi.state)) : "-";
     const std::string rst = mi.restarts >= 0 ? std::to_string(mi.restarts) : "-";
-    const std::string ag = mi.state_at == kNever ? "-" : f("%.0fs", age);
+    const std::string ag = mi.state_at == kNever ? "-" : strprintf("%.0fs", age);
     attr_t a = stale ? A_DIM : A_NORMAL;
     if (mi.state == module::State::Run && !stale) a |= color(kGreen);
     else if (mi.state == module::State::Error || mi.phase == 4 || mi.phase == 0) a |= color(kRed);
-    put_w(r, 0, width, f("%-15.15s %-6.6s %-7d %-3s %s", name.c_str(), st.c_str(), mi.pid, rst.c_str(), ag.c_str()), a);
+    put_w(r, 0, width, strprintf("%-15.15s %-6.6s %-7d %-3s %s", name.c_str(), st.c_str(), mi.pid, rst.c_str(), ag.c_str()), a);
     ++r;
     ++shown;
   }
@@ -223,7 +215,7 @@ void draw_summary(const Model& model, double now) {
   const int bottom = content_bottom();
   if (LINES < 24 || COLS < 40) {
     // The fixed rows and the module list would overlap: say so instead.
-    put(1, 0, f("the summary needs 40x24 or more (now %dx%d); 80x24 adds the ranges", COLS, LINES), A_BOLD);
+    put(1, 0, strprintf("the summary needs 40x24 or more (now %dx%d); 80x24 adds the ranges", COLS, LINES), A_BOLD);
     return;
   }
   // Rows for the module list: what is left above the 12 fixed rows.
@@ -235,19 +227,19 @@ void draw_summary(const Model& model, double now) {
   const auto& p = model.odometry().pose();
   const auto& odo = model.odo();
   put_w(r++, 0, w,
-        f("Pos odo  x %+6.2f y %+6.2f h %+6.1f", p.x_m, p.y_m, p.heading_rad * kRadToDeg) +
+        strprintf("Pos odo  x %+6.2f y %+6.2f h %+6.1f", p.x_m, p.y_m, p.heading_rad * kRadToDeg) +
             (odo.has() ? stale_mark(odo.age(now), stale_after_s(msgs::kDataOdo.rate_hz)) : " -"),
         odo.has() ? fresh_attr(odo, now, msgs::kDataOdo.rate_hz) : A_DIM);
   const auto& t = model.true_pose();
   if (t.has())
-    put_w(r++, 0, w, f("Pos true x %+6.2f y %+6.2f h %+6.1f", t.x_m, t.y_m, t.heading_rad * kRadToDeg) +
+    put_w(r++, 0, w, strprintf("Pos true x %+6.2f y %+6.2f h %+6.1f", t.x_m, t.y_m, t.heading_rad * kRadToDeg) +
                          stale_mark(now - t.at, stale_after_s(10)));
   else
     put_w(r++, 0, w, "Pos true (no SIM_DATA_POSE)", A_DIM);
 
   const auto& c = model.motion_cmd();
   if (c.has())
-    put_w(r++, 0, w, f("Command  v %+5.2f m/s steer %+5.1f by %s", c.msg.speed_mps, c.msg.steering_rad * kRadToDeg,
+    put_w(r++, 0, w, strprintf("Command  v %+5.2f m/s steer %+5.1f by %s", c.msg.speed_mps, c.msg.steering_rad * kRadToDeg,
                        c.msg.module == "diagnostic_center" ? "us" : c.msg.module.c_str()) +
                          stale_mark(c.age(now), 1.0),
           c.age(now) > 1.0 ? A_DIM : A_NORMAL);
@@ -257,12 +249,12 @@ void draw_summary(const Model& model, double now) {
   const auto& d = model.drives();
   if (d.has()) {
     const attr_t a = fresh_attr(d, now, msgs::kDataDrives.rate_hz);
-    put_w(r++, 0, w, f("Drives   v %+5.2f m/s steer %+5.1f", d.msg.speed_mps, d.msg.steering_rad * kRadToDeg) +
+    put_w(r++, 0, w, strprintf("Drives   v %+5.2f m/s steer %+5.1f", d.msg.speed_mps, d.msg.steering_rad * kRadToDeg) +
                          stale_mark(d.age(now), stale_after_s(msgs::kDataDrives.rate_hz)), a);
     std::string states;
     for (std::size_t i = 0; i < static_cast<std::size_t>(d.msg.num_drives); ++i)
       states += (d.msg.axis[i] == lowlevel::data_drives_t::AXIS_PROPULSION ? "EPOS " : "IclA ") + short_state(d.msg.state[i]) +
-                (d.msg.homed[i] ? " H" : "") + (d.msg.fault[i] ? f(" F%04X", static_cast<unsigned>(d.msg.error_code[i])) : "") + "  ";
+                (d.msg.homed[i] ? " H" : "") + (d.msg.fault[i] ? strprintf(" F%04X", static_cast<unsigned>(d.msg.error_code[i])) : "") + "  ";
     put_w(r++, 0, w, " " + states, a | (d.msg.stopped ? color(kRed) : A_NORMAL));
     if (d.msg.stopped)
       put_w(r++, 0, w, "QUICK STOP: " + d.msg.stop_reason, color(kRed) | A_BOLD);
@@ -285,7 +277,7 @@ void draw_summary(const Model& model, double now) {
   if (tt.has()) {
     std::string s = "Temp    ";
     for (std::size_t i = 0; i < static_cast<std::size_t>(tt.msg.count); ++i)
-      s += f(" %s %.1f", tt.msg.label[i].c_str(), tt.msg.celsius[i]);
+      s += strprintf(" %s %.1f", tt.msg.label[i].c_str(), tt.msg.celsius[i]);
     put_w(r++, 0, w, s + " C" + stale_mark(tt.age(now), stale_after_s(msgs::kDataTemperature.rate_hz)),
           fresh_attr(tt, now, msgs::kDataTemperature.rate_hz));
   } else {
@@ -296,7 +288,7 @@ void draw_summary(const Model& model, double now) {
     std::string s = "Fans    ";
     bool bad = fa.msg.fan_fail;
     for (std::size_t i = 0; i < static_cast<std::size_t>(fa.msg.count); ++i) {
-      s += f(" %s %d", fa.msg.label[i].c_str(), fa.msg.rpm[i]) + (fa.msg.fault[i] ? "!" : "");
+      s += strprintf(" %s %d", fa.msg.label[i].c_str(), fa.msg.rpm[i]) + (fa.msg.fault[i] ? "!" : "");
       bad = bad || fa.msg.fault[i];
     }
     s += fa.msg.fan_fail ? " FAN-FAIL" : "";
@@ -309,7 +301,7 @@ void draw_summary(const Model& model, double now) {
   if (pw.has()) {
     std::string s = "Power   ";
     for (std::size_t i = 0; i < static_cast<std::size_t>(pw.msg.num_outputs); ++i)
-      s += f(" %zu%c", i, pw.msg.on[i] ? '+' : '-');
+      s += strprintf(" %zu%c", i, pw.msg.on[i] ? '+' : '-');
     put_w(r++, 0, w, s + stale_mark(pw.age(now), stale_after_s(msgs::kDataPower.rate_hz)),
           fresh_attr(pw, now, msgs::kDataPower.rate_hz));
   } else {
@@ -319,7 +311,7 @@ void draw_summary(const Model& model, double now) {
   if (b.has()) {
     std::string s = "Beacons ";
     for (std::size_t i = 0; i < static_cast<std::size_t>(b.msg.count); ++i)
-      s += f(" %d@%.0f", b.msg.id[i], b.msg.bearing_rad[i] * kRadToDeg);
+      s += strprintf(" %d@%.0f", b.msg.id[i], b.msg.bearing_rad[i] * kRadToDeg);
     if (b.msg.count == 0) s += " none seen";
     put_w(r++, 0, w, s + stale_mark(b.age(now), stale_after_s(msgs::kDataBeacons.rate_hz)),
           fresh_attr(b, now, msgs::kDataBeacons.rate_hz));
@@ -327,9 +319,9 @@ void draw_summary(const Model& model, double now) {
     put_w(r++, 0, w, "Beacons  (no LL_DATA_BEACONS)", A_DIM);
   }
   if (model.errors().empty())
-    put_w(r++, 0, w, f("Errors   %llu", static_cast<unsigned long long>(model.errors_total())));
+    put_w(r++, 0, w, strprintf("Errors   %llu", static_cast<unsigned long long>(model.errors_total())));
   else
-    put_w(r++, 0, w, f("Errors   %llu, last %s: %s", static_cast<unsigned long long>(model.errors_total()),
+    put_w(r++, 0, w, strprintf("Errors   %llu, last %s: %s", static_cast<unsigned long long>(model.errors_total()),
                        model.errors().back().msg.module.c_str(), model.errors().back().msg.text.c_str()),
           model.errors().back().msg.severity >= common::error_t::SEVERITY_ERROR ? color(kRed) : color(kYellow));
 
@@ -339,7 +331,7 @@ void draw_summary(const Model& model, double now) {
 // --- errors ----------------------------------------------------------------
 
 void draw_errors(const Model& model, const Controller& ctl, double now) {
-  put(1, 0, f("Errors: %zu kept, %llu since start (CM_DATA_ERROR)", model.errors().size(),
+  put(1, 0, strprintf("Errors: %zu kept, %llu since start (CM_DATA_ERROR)", model.errors().size(),
               static_cast<unsigned long long>(model.errors_total())), A_BOLD);
   put(2, 0, "   age module          sev     num  text", A_BOLD);
   const int first_row = 3, rows = content_bottom() - first_row + 1;
@@ -355,7 +347,7 @@ void draw_errors(const Model& model, const Controller& ctl, double now) {
     const int s = std::clamp<int>(e.msg.severity, 0, 2);
     attr_t a = s == 2 ? color(kRed) : s == 1 ? color(kYellow) : A_NORMAL;
     if (e.msg.fatal) a |= A_BOLD;
-    put(r++, 0, f("%5.0fs %-15.15s %-7s %4d  %s%s", now - e.at, e.msg.module.c_str(), sev[s], e.msg.number,
+    put(r++, 0, strprintf("%5.0fs %-15.15s %-7s %4d  %s%s", now - e.at, e.msg.module.c_str(), sev[s], e.msg.number,
                   e.msg.fatal ? "FATAL " : "", e.msg.text.c_str()), a);
   }
   if (errs.empty()) put(first_row, 0, "  (none)", A_DIM);
@@ -380,13 +372,13 @@ void draw_modules(const Model& model, const Controller& ctl, double now) {
     if (r > content_bottom()) break;
     const bool stale = mi.state_at == kNever || now - mi.state_at > kModuleStaleAfterS;
     const std::string st = mi.state ? std::string(module::to_string(*mi.state)) : "-";
-    const std::string ag = mi.state_at == kNever ? "-" : f("%.1fs", now - mi.state_at);
+    const std::string ag = mi.state_at == kNever ? "-" : strprintf("%.1fs", now - mi.state_at);
     const std::string rst = mi.restarts >= 0 ? std::to_string(mi.restarts) : "-";
     const std::string ex = mi.exit_status >= 0 ? std::to_string(mi.exit_status) : "-";
-    const std::string nx = mi.next_start_ms >= 0 ? f("%dms", mi.next_start_ms) : "-";
+    const std::string nx = mi.next_start_ms >= 0 ? strprintf("%dms", mi.next_start_ms) : "-";
     attr_t a = stale ? A_DIM : A_NORMAL;
     if (i == sel) a = A_REVERSE;
-    put(r++, 0, f("%c %-16.16s %-9.9s %-8d %6s  %-12s %-8s %-4s %s", i == sel ? '>' : ' ', name.c_str(), st.c_str(),
+    put(r++, 0, strprintf("%c %-16.16s %-9.9s %-8d %6s  %-12s %-8s %-4s %s", i == sel ? '>' : ' ', name.c_str(), st.c_str(),
                   mi.pid, ag.c_str(), phase_name(mi.phase), rst.c_str(), ex.c_str(), nx.c_str()), a);
     ++i;
   }
@@ -399,7 +391,7 @@ void draw_power(const Model& model, const Controller& ctl, double now) {
   const auto& pw = model.power();
   std::string head = "Power outputs (PSC1): LL_CMD_POWER";
   if (pw.has()) {
-    head += pw.msg.battery_v >= 0 ? f(", battery %.2f V", pw.msg.battery_v) : ", battery not measured";
+    head += pw.msg.battery_v >= 0 ? strprintf(", battery %.2f V", pw.msg.battery_v) : ", battery not measured";
     head += stale_mark(pw.age(now), stale_after_s(msgs::kDataPower.rate_hz));
   } else {
     head += ", no LL_DATA_POWER yet";
@@ -414,14 +406,14 @@ void draw_power(const Model& model, const Controller& ctl, double now) {
     const auto ui = static_cast<std::size_t>(i);
     const bool known = pw.has() && i < pw.msg.num_outputs;
     const std::string st = known ? (pw.msg.on[ui] ? "ON" : "off") : "?";
-    const std::string cur = known && pw.msg.current_a[ui] >= 0 ? f("%.2f A", pw.msg.current_a[ui]) : "-";
+    const std::string cur = known && pw.msg.current_a[ui] >= 0 ? strprintf("%.2f A", pw.msg.current_a[ui]) : "-";
     attr_t a = known && pw.msg.on[ui] ? color(kGreen) : A_NORMAL;
     if (i == ctl.power_row()) a = A_REVERSE;
-    put(r, 0, f("%c %-7d %-6s %s", i == ctl.power_row() ? '>' : ' ', i, st.c_str(), cur.c_str()), a);
+    put(r, 0, strprintf("%c %-7d %-6s %s", i == ctl.power_row() ? '>' : ' ', i, st.c_str(), cur.c_str()), a);
   }
   const auto& pc = model.power_cmd();
   if (pc.has() && r + 1 <= content_bottom())
-    put(r + 1, 0, f("last LL_CMD_POWER: output %d %s from %s, %.1f s ago", pc.msg.output, pc.msg.on ? "on" : "off",
+    put(r + 1, 0, strprintf("last LL_CMD_POWER: output %d %s from %s, %.1f s ago", pc.msg.output, pc.msg.on ? "on" : "off",
                     pc.msg.module.c_str(), pc.age(now)), A_DIM);
 }
 
