@@ -6,13 +6,14 @@
 #   make ARCH=arm        cross-build modules for armhf (armmp) and armel (marvell),
 #                        userland and static test programs for both
 #   make check           everything the README's test command runs (see docs/testing.md)
+#   make check-fast      gates, unit tests, kernel suites on the x86_64 lane (iteration)
 #   make check TEST=name one VM test (suite or suite/program) on the x86_64 lane
 #   make demo            the main job: the robot's low level on the simulated
 #                        robot in the VM, diagnostic_center on this terminal
 #                        (FOR=30s: non-interactive, a text summary every 5 s)
 #   make deps            install what this machine lacks (idempotent)
 #   make gates           W=1 + checkpatch --strict + sparse on the kernel sources
-#   make unit            CTest (plain and ASan/UBSan)
+#   make unit            CTest in the ASan/UBSan build (VARIANTS="native asan": both)
 #   make vm-x86 / vm-arm / vm-debug  one VM lane (vm-debug: KASAN/lockdep kernel)
 #   make bench           the benchmarks: VM programs named bench* (TEST= selects)
 #   make install         install the built stack (DESTDIR= stages it; ARCH=arm
@@ -38,7 +39,7 @@ TEST ?=
 export KVER KDIR TOP BUILD
 
 .PHONY: all default modules userland testprogs arm arm-modules arm-userland arm-testprogs \
-	check unit unit-asan gates vm-x86 vm-arm vm-debug bench demo deps clean help \
+	check check-fast unit gates vm-x86 vm-arm vm-debug bench demo deps clean help \
 	install dkms-source
 
 ifeq ($(ARCH),arm)
@@ -50,7 +51,7 @@ endif
 all: modules userland testprogs
 
 help:
-	@sed -n '3,25p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,26p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@$(TOP)/scripts/deps.sh
@@ -86,8 +87,11 @@ arm-testprogs:
 check:
 	@$(TOP)/scripts/check.sh $(if $(TEST),--test "$(TEST)")
 
+check-fast:
+	@$(TOP)/scripts/check.sh --fast
+
 unit:
-	@$(TOP)/scripts/unit.sh
+	@$(TOP)/scripts/unit.sh $(VARIANTS)
 
 gates:
 	@$(TOP)/scripts/kernel-gates.sh

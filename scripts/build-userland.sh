@@ -2,8 +2,12 @@
 # SPDX-License-Identifier: GPL-2.0
 #
 # build-userland.sh VARIANT: configure and build userland/ with CMake + Ninja.
-#   native  build/userland         RelWithDebInfo, unit tests
-#   asan    build/userland-asan    Debug, AddressSanitizer + UBSan, unit tests
+#   native  build/userland         RelWithDebInfo, unit tests (none with
+#                                  ADVEE_UNIT_TESTS=0: what the VMs, the demo
+#                                  and the browser check run needs no tests)
+#   asan    build/userland-asan    RelWithDebInfo (the optimisation that ships:
+#                                  -O2 bugs such as strict aliasing show) with
+#                                  AddressSanitizer + UBSan, unit tests
 #   armhf   build/userland-armhf   cross (arm-linux-gnueabihf), no tests
 #   armel   build/userland-armel   cross (arm-linux-gnueabi, the TS-7800), no tests
 # The cross builds link Debian's armhf/armel libraries from the sysroot of
@@ -16,8 +20,12 @@ variant=${1:?variant (native|asan|armhf|armel)}
 # Installed (scripts/install.sh) as a Debian package would be: /usr, /etc.
 args=(-G Ninja -S "$TOP/userland" -DCMAKE_INSTALL_PREFIX=/usr -DCMAKE_INSTALL_SYSCONFDIR=/etc)
 case $variant in
-native) dir=$BUILD/userland; args+=(-DCMAKE_BUILD_TYPE=RelWithDebInfo) ;;
-asan) dir=$BUILD/userland-asan; args+=(-DCMAKE_BUILD_TYPE=Debug -DADVEE_SANITIZE=ON) ;;
+native)
+	dir=$BUILD/userland
+	args+=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
+	[ "${ADVEE_UNIT_TESTS:-1}" = 0 ] && args+=(-DADVEE_BUILD_TESTS=OFF)
+	;;
+asan) dir=$BUILD/userland-asan; args+=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DADVEE_SANITIZE=ON) ;;
 armhf|armel)
 	dir=$BUILD/userland-$variant
 	args+=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DADVEE_BUILD_TESTS=OFF
@@ -26,6 +34,7 @@ armhf|armel)
 *) die "unknown userland variant $variant" ;;
 esac
 say "userland ($variant) in $dir"
+mkdir -p "$BUILD"
 log=$dir.log
 # A toolchain file is read once, when the cache is created (its *_INIT
 # flags then stay in CMakeCache.txt): start the cache again when the

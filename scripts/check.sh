@@ -1,115 +1,231 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# check.sh [--test NAME]...: the project's whole test run (the README's test
-# command, and CI's). Installs what is missing, then runs, in order:
+# check.sh [--fast] [--test NAME]...: the project's whole test run (the README's
+# test command, and CI's). Installs what is missing, then runs:
 #   kernel gates (W=1 on x86_64/armhf/armel, checkpatch --strict, sparse),
-#   unit tests (CTest, plain and ASan/UBSan), the web dashboard in headless
-#   Chromium (userland/web/tests/browser-check.sh), ARM userland cross builds,
-#   the x86_64 VM lane, the armhf VM lane and the debug-kernel VM lane (KASAN,
-#   lockdep, kmemleak, UBSAN; its kernel is built once and cached, see
-#   scripts/debug-kernel.sh).
-# Every stage runs even if an earlier one failed; the last line counts every
-# TAP test point and every CTest test: "N passed, N failed, N skipped".
+#   unit tests (CTest in one ASan/UBSan build; the plain build the VMs use has
+#   no test binaries), the web dashboard in headless Chromium
+#   (userland/web/tests/browser-check.sh), ARM userland cross builds with the
+#   install manifest of each target, DKMS, the x86_64 VM lane (every suite),
+#   the debug-kernel VM lane (KASAN, lockdep, kmemleak, UBSAN: the kernel
+#   suites; its kernel is built once and cached, see scripts/debug-kernel.sh,
+#   in the background while the other stages run) and the armhf VM lane.
+# --fast (make check-fast): gates, unit tests and the kernel suites on the
+# x86_64 lane only.
+# Every stage runs even if an earlier one failed. Before the summary: the
+# time of every stage and VM suite (also in build/results/time.tsv), then
+# the failures and skips; a skip not listed in tests/expected-skips fails the
+# run. The last line counts every TAP test point, CTest test and gate:
+# "N passed, N failed, N skipped".
 # With --test, only the x86_64 VM lane runs that suite (or suite/program); set
 # VMTEST_LANES="x86_64 armhf debug" to run it on the other lanes too.
 set -uo pipefail
 . "$(dirname "$0")/lib.sh"
+. "$TOP/tests/harness/lib-host.sh"
 
-tests=()
+tests=() mode=full
 while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=(--test "$2"); shift 2 ;;
-	-h|--help) sed -n '3,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	--fast) mode=fast; shift ;;
+	-h|--help) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "check.sh: unknown argument $1" ;;
 	esac
 done
+[ "${#tests[@]}" -gt 0 ] && mode=selected
 
 start=$(date +%s)
-"$TOP/scripts/deps.sh" || die "dependencies could not be installed"
-rm -rf "$BUILD/results"
-mkdir -p "$BUILD/results"
-stage_row() {	# stage_row NAME STATUS
+RESULTS=$BUILD/results
+rm -rf "$RESULTS"
+mkdir -p "$RESULTS"
+TIMES=$RESULTS/time.tsv
+: >"$TIMES"
+
+stage_row() {	# stage_row NAME STATUS: one row for a stage without rows of its own
 	if [ "$2" = 0 ]; then
-		printf 'build: %s\t1\t0\t0\tok\t\n' "$1" >>"$BUILD/results/stages.tsv"
+		printf 'build: %s\t1\t0\t0\tok\t\n' "$1" >>"$RESULTS/stages.tsv"
 	else
-		printf 'build: %s\t0\t1\t0\tfail\tsee output above\n' "$1" >>"$BUILD/results/stages.tsv"
+		printf 'build: %s\t0\t1\t0\tfail\tsee output above\n' "$1" >>"$RESULTS/stages.tsv"
 	fi
 }
-stage() {	# stage NAME CMD...: run one step, record it, go on
-	local name=$1 rc
+# fd 3: the terminal, also from the tracks (whose output goes to their logs):
+# one line as each stage starts and ends.
+exec 3>&2
+stage() {	# stage NAME CMD...: run one step, time it, go on
+	local name=$1 rc t0 secs
 	shift
 	say "$name"
+	printf '==> [%s] start: %s\n' "$(date +%T)" "$name" >&3
+	t0=$(date +%s)
 	"$@"
 	rc=$?
+	secs=$(($(date +%s) - t0))
+	printf 'stage\t%s\t%d\t%s\n' "$name" "$secs" "$([ $rc = 0 ] && echo ok || echo fail)" >>"$TIMES"
+	printf '==> [%s] %s: %s (%d s)\n' "$(date +%T)" "$([ $rc = 0 ] && echo done || echo FAILED)" "$name" "$secs" >&3
 	[ $rc = 0 ] || say "FAILED: $name"
 	return $rc
 }
 
-if [ "${#tests[@]}" -eq 0 ]; then
-	stage "kernel quality gates" "$TOP/scripts/kernel-gates.sh"
-	stage "unit tests" "$TOP/scripts/unit.sh"
+stage "dependencies (scripts/deps.sh)" "$TOP/scripts/deps.sh" ||
+	die "dependencies could not be installed"
+
+lanes=${VMTEST_LANES:-x86_64 armhf debug}
+[ "$mode" = fast ] && lanes=x86_64
+[ "$mode" = selected ] && lanes=${VMTEST_LANES:-x86_64}
+
+# The debug kernel (a cold build takes 13-27 minutes) is needed only by the
+# last lane: build it in the background at a low priority, so that it uses
+# the CPU time the stages in front leave idle (VM guests waiting on timers,
+# downloads). vm-debug.sh waits for it (scripts/debug-kernel.sh takes a lock).
+case " $lanes " in
+*" debug "*)
+	(
+		t0=$(date +%s)
+		ADVEE_KNICE=${ADVEE_KNICE:-15} "$TOP/scripts/debug-kernel.sh" >"$RESULTS/debug-kernel.log" 2>&1
+		rc=$?
+		printf 'stage\t%s\t%d\t%s\n' "debug kernel build or cache look-up (background, from the start)" \
+			$(($(date +%s) - t0)) "$([ $rc = 0 ] && echo ok || echo fail)" >>"$TIMES"
+	) &
+	;;
+esac
+
+# A track: stages that run one after the other, in the background, with
+# their output in build/results/track-NAME.log (printed when it ends).
+track_pids=() track_names=()
+track() {	# track NAME FUNCTION
+	local name=$1
+	say "track '$name' started (output: build/results/track-$name.log)"
+	("$2" >"$RESULTS/track-$name.log" 2>&1) &
+	track_pids+=($!) track_names+=("$name")
+}
+wait_tracks() {
+	local i
+	for i in "${!track_pids[@]}"; do
+		wait "${track_pids[$i]}"
+		echo "---- output of track '${track_names[$i]}' ----"
+		cat "$RESULTS/track-${track_names[$i]}.log"
+		echo "---- end of track '${track_names[$i]}' ----"
+	done
+	track_pids=() track_names=()
+}
+
+x86_lane() {
+	[ -s "$BUILD/kmod/x86_64/modules.list" ] || "$TOP/scripts/build-kmod.sh" x86_64
+	local sel=("${tests[@]}") s
+	if [ "$mode" = fast ]; then
+		for s in $(kernel_suites); do sel+=(--test "$s"); done
+	fi
+	stage "x86_64 VM lane" "$TOP/tests/harness/vm-x86.sh" "${sel[@]}"
+}
+armhf_lane() {
+	[ -s "$BUILD/kmod/armhf/modules.list" ] || "$TOP/scripts/build-kmod.sh" armhf
+	stage "test programs (armhf)" "$TOP/scripts/build-testprogs.sh" armhf
+	stage_row "test programs (armhf)" $?
+	stage "armhf VM lane" "$TOP/tests/harness/vm-arm.sh" "${tests[@]}"
+}
+debug_lane() {
+	# vm-debug.sh waits for the background build of the debug kernel (a lock
+	# in scripts/debug-kernel.sh) and then finds it in the cache.
+	# vm-debug.sh builds (or reuses) the debug kernel and our modules for
+	# it; when that fails, no test ran: a failure, never a silent skip.
+	rm -f "$RESULTS/debug.tsv"
+	stage "debug-kernel VM lane" "$TOP/tests/harness/vm-debug.sh" "${tests[@]}"
+	if [ ! -s "$RESULTS/debug.tsv" ]; then
+		say "FAILED: the debug lane did not run: its kernel, our modules for it or its VM could not be set up"
+		printf 'debug: lane did not run\t0\t1\t0\tfail\tdebug kernel, its modules or its VM could not be set up\n' \
+			>>"$RESULTS/stages.tsv"
+	fi
+}
+# The host-side checks that need no VM of their own, at a low priority next
+# to the VM lanes: CPU-bound builds fill the time the guests spend waiting.
+host_checks() {
+	local a
+	stage "unit tests (ASan/UBSan)" nice -n 10 "$TOP/scripts/unit.sh"
 	# The web dashboard end to end on the host: advee-web, LCM over loopback
 	# multicast, headless Chromium; one row per check in results/web.tsv.
-	rm -f "$BUILD/results/web.tsv"
 	stage "web dashboard (headless Chromium)" "$TOP/userland/web/tests/browser-check.sh"
-	[ -s "$BUILD/results/web.tsv" ] ||
-		printf 'web: browser check did not run\t0\t1\t0\tfail\tsee output above\n' >>"$BUILD/results/stages.tsv"
+	[ -s "$RESULTS/web.tsv" ] ||
+		printf 'web: browser check did not run\t0\t1\t0\tfail\tsee output above\n' >>"$RESULTS/stages.tsv"
+	# Every program of the install manifest exists for each target.
 	for a in armhf armel; do
-		stage "userland cross build ($a)" "$TOP/scripts/build-userland.sh" "$a"
-		stage_row "userland cross build ($a)" $?
+		stage "userland cross build + install manifest ($a)" nice -n 10 "$TOP/scripts/cross-check.sh" "$a"
+		stage_row "userland cross build + install manifest ($a)" $?
 	done
 	# dkms add/build/install in a private tree, then the VM loads its modules.
 	stage "DKMS packaging (scripts/dkms-check.sh)" "$TOP/scripts/dkms-check.sh"
 	stage_row "DKMS packaging: dkms add/build/install, modules load in the VM" $?
-	lanes=${VMTEST_LANES:-x86_64 armhf debug}
-else
+}
+
+case $mode in
+selected)
 	stage "kernel modules (x86_64)" "$TOP/scripts/build-kmod.sh" x86_64
 	stage_row "kernel modules (x86_64)" $?
-	# VM suites run user-space programs from build/userland (simulators, tools).
-	stage "userland (native)" "$TOP/scripts/build-userland.sh" native
-	stage_row "userland (native)" $?
-	lanes=${VMTEST_LANES:-x86_64}
-fi
+	;;
+*)
+	stage "kernel quality gates" "$TOP/scripts/kernel-gates.sh"	# also builds the modules of every target
+	;;
+esac
+# The VM suites and the browser check run the plain build's programs; its
+# test binaries would only repeat what the ASan build runs.
+ADVEE_UNIT_TESTS=0 stage "userland (native)" "$TOP/scripts/build-userland.sh" native
+stage_row "userland (native)" $?
+stage "test programs (x86_64)" "$TOP/scripts/build-testprogs.sh" x86_64
+stage_row "test programs (x86_64)" $?
 
-for lane in $lanes; do
-	case $lane in
-	x86_64)
-		[ -s "$BUILD/kmod/x86_64/modules.list" ] || "$TOP/scripts/build-kmod.sh" x86_64
-		stage "test programs (x86_64)" "$TOP/scripts/build-testprogs.sh" x86_64
-		stage_row "test programs (x86_64)" $?
-		stage "x86_64 VM lane" "$TOP/tests/harness/vm-x86.sh" "${tests[@]}"
-		;;
-	armhf)
-		[ -s "$BUILD/kmod/armhf/modules.list" ] || "$TOP/scripts/build-kmod.sh" armhf
-		stage "test programs (armhf)" "$TOP/scripts/build-testprogs.sh" armhf
-		stage_row "test programs (armhf)" $?
-		stage "armhf VM lane" "$TOP/tests/harness/vm-arm.sh" "${tests[@]}"
-		;;
-	debug)
-		# vm-debug.sh builds (or reuses) the debug kernel and our modules for
-		# it; when that fails, no test ran: a failure, never a silent skip.
-		rm -f "$BUILD/results/debug.tsv"
-		stage "debug-kernel VM lane" "$TOP/tests/harness/vm-debug.sh" "${tests[@]}"
-		if [ ! -s "$BUILD/results/debug.tsv" ]; then
-			say "FAILED: the debug lane did not run: its kernel, our modules for it or its VM could not be set up (see above)"
-			printf 'debug: lane did not run\t0\t1\t0\tfail\tdebug kernel, its modules or its VM could not be set up\n' \
-				>>"$BUILD/results/stages.tsv"
-		fi
-		;;
-	*) die "unknown lane $lane" ;;
-	esac
-done
-
+case $mode in
+fast)
+	stage "unit tests (ASan/UBSan)" "$TOP/scripts/unit.sh"
+	x86_lane
+	;;
+selected)
+	for lane in $lanes; do
+		case $lane in
+		x86_64) x86_lane ;;
+		armhf) armhf_lane ;;
+		debug) debug_lane ;;
+		*) die "unknown lane $lane" ;;
+		esac
+	done
+	;;
+full)
+	# Two tracks side by side: the VM lanes one after the other (each guest
+	# has the 2 vCPUs), and the host checks with the armhf lane after them.
+	vm_track() { x86_lane; debug_lane; }
+	host_track() { host_checks; armhf_lane; }
+	track vm vm_track
+	track host host_track
+	wait_tracks
+	;;
+esac
+wait	# the debug kernel build, when no lane needed it
 # Summary over every row of this run.
-cat "$BUILD"/results/*.tsv >"$BUILD/results/all.tsv"
+for f in "$RESULTS"/*.tsv; do
+	case ${f##*/} in time.tsv|all.tsv|skip-policy.tsv) ;; *) cat "$f" ;; esac
+done >"$RESULTS/all.tsv"
+"$TOP/scripts/skip-policy.sh" "$RESULTS/all.tsv" >"$RESULTS/skip-policy.tsv"
+cat "$RESULTS/skip-policy.tsv" >>"$RESULTS/all.tsv"
+# VM time per suite and lane (the 7th column of the lanes' rows).
+for lane in x86_64 armhf debug; do
+	[ -s "$RESULTS/$lane.tsv" ] || continue
+	awk -F'\t' -v lane="$lane" '$7 != "" {
+			s = $1; sub(/^[^:]*: /, "", s); sub(/\/.*/, "", s); t[s] += $7
+		} END { for (s in t) printf "suite\t%s: %s\t%d\n", lane, s, t[s] }' "$RESULTS/$lane.tsv" | sort >>"$TIMES"
+done
+total=$(($(date +%s) - start))
+printf 'total\tcheck.sh %s\t%d\n' "$mode" "$total" >>"$TIMES"
 echo
+echo "Time (build/results/time.tsv):"
+awk -F'\t' '
+	$1 == "stage" { printf "  %6d s  %s%s\n", $3, $2, ($4 == "fail" ? "  (failed)" : "") }
+	$1 == "suite" { printf "  %6d s      VM suite %s\n", $3, $2 }
+	$1 == "total" { printf "  %6d s  total\n", $3 }' "$TIMES"
 echo "Failures:"
 awk -F'\t' '$5 == "fail" { printf "  %s%s\n", $1, ($6 != "" ? " (" $6 ")" : ""); n++ }
-	END { if (!n) print "  none" }' "$BUILD/results/all.tsv"
-echo "Skipped:"
+	END { if (!n) print "  none" }' "$RESULTS/all.tsv"
+echo "Skipped (each listed in tests/expected-skips):"
 awk -F'\t' '$4 > 0 { printf "  %s%s\n", $1, ($6 != "" ? " (" $6 ")" : ""); n++ }
-	END { if (!n) print "  none" }' "$BUILD/results/all.tsv"
-echo "Time: $(($(date +%s) - start)) s; details in build/results/"
+	END { if (!n) print "  none" }' "$RESULTS/all.tsv"
+echo "Time: $total s; details in build/results/"
 awk -F'\t' '{ p += $2; f += $3; s += $4 } END {
-	printf "%d passed, %d failed, %d skipped\n", p, f, s; exit (f > 0) }' "$BUILD/results/all.tsv"
+	printf "%d passed, %d failed, %d skipped\n", p, f, s; exit (f > 0) }' "$RESULTS/all.tsv"

@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: GPL-2.0
 #
 # fetch-arm-sysroot.sh DEBARCH: Debian's armel/armhf builds of the libraries
-# the userland links (LCM, libgpiod, yaml-cpp, libsystemd, spdlog/fmt and
-# what their .so files need, and the header-only Eigen, CLI11, nlohmann-json),
+# the userland links (LCM, libgpiod, yaml-cpp, libsystemd, spdlog/fmt, ncurses
+# and what their .so files need, and the header-only Eigen, CLI11,
+# nlohmann-json, websocketpp, asio),
 # downloaded with apt-get download through the
 # private apt setup of fetch-arm-kernel.sh (its lists dir; no foreign
 # architecture is ever added to dpkg) and extracted into
@@ -30,7 +31,8 @@ pkgs=(liblcm-dev liblcm1 libglib2.0-dev libglib2.0-0 libpcre2-8-0 libffi8 libmou
 libgpiod-dev libgpiod2 libyaml-cpp-dev libyaml-cpp0.7
 libsystemd-dev libsystemd0 libcap2 libgcrypt20 libgpg-error0 liblz4-1 liblzma5 libzstd1
 libspdlog-dev libspdlog1.10 libfmt-dev libfmt9
-libeigen3-dev libcli11-dev nlohmann-json3-dev)
+libncurses-dev libncurses6 libncursesw6 libtinfo6
+libeigen3-dev libcli11-dev nlohmann-json3-dev libwebsocketpp-dev libasio-dev)
 sysroot=$cache/sysroot
 stamp=$sysroot/.advee-packages
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "${pkgs[*]}" ]; then

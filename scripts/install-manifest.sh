@@ -1,32 +1,43 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# install-manifest.sh DESTDIR KVER: compare a staging install with the file
-# list of docs/install.md (the block between <!-- manifest:begin --> and
-# <!-- manifest:end -->). A line is a path, <kver> stands for the kernel
-# release, a * matches any characters (also /); "(when built)" after a path
-# marks a file that comes with a component still being written. Prints every
-# listed path that is missing and every installed file that is not listed;
-# exits 1 on any.
+# install-manifest.sh DESTDIR KVER [TARGET]: compare a staging install with
+# the file list of docs/install.md (the block between <!-- manifest:begin -->
+# and <!-- manifest:end -->). A line is a path, <kver> stands for the kernel
+# release, a * matches any characters (also /). Every path is required on
+# every target (native, armhf, armel; default native) unless the line says
+# "(not on TARGET...: why)": then it must be absent there. Prints every
+# required path that is missing, every excluded one that is there and every
+# installed file that is not listed; exits 1 on any.
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
 dest=${1:?staging root}
 kver=${2:?kernel release}
+target=${3:-native}
+case $target in native|armhf|armel) ;; *) die "install-manifest.sh: unknown target $target" ;; esac
 entries=$(sed -n '/<!-- manifest:begin -->/,/<!-- manifest:end -->/p' "$TOP/docs/install.md" |
 	grep '^/' | sed "s/<kver>/$kver/g")
 [ -n "$entries" ] || die "no manifest block in docs/install.md"
 
 bad=0
 files=$(cd "$dest" && find . \( -type f -o -type l \) | sed 's/^\.//' | sort)
-# Every listed path is there (unless marked "(when built)").
+# Every listed path is there, unless excluded for this target.
 while read -r path rest; do
 	re=$(printf '%s' "$path" | sed 's/[].[^$\\]/\\&/g; s/\*/.*/g')
-	if ! grep -qx "$re" <<<"$files"; then
-		case $rest in
-		*"(when built)"*) echo "not built yet: $path" ;;
-		*) echo "missing: $path"; bad=1 ;;
-		esac
+	excluded=0
+	case $rest in
+	'') ;;
+	'(not on '*': '*')')
+		for t in $(printf '%s' "$rest" | sed 's/^(not on \([^:]*\):.*/\1/'); do
+			[ "$t" = "$target" ] && excluded=1
+		done ;;
+	*) echo "docs/install.md: '$path $rest': only '(not on TARGET...: why)' may follow a path"; bad=1; continue ;;
+	esac
+	if grep -qx "$re" <<<"$files"; then
+		[ $excluded = 1 ] && { echo "installed although not shipped on $target: $path $rest"; bad=1; }
+	else
+		[ $excluded = 1 ] || { echo "missing on $target: $path"; bad=1; }
 	fi
 done <<<"$entries"
 # Every installed file is listed.

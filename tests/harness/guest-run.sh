@@ -22,7 +22,7 @@
 #                          on the console instead of the tests
 #
 # Results: tap.txt (top-level TAP, program output as "# " lines), results.tsv
-# (name, passed, failed, skipped, verdict, reason), logs/<suite>.<prog>.log,
+# (name, passed, failed, skipped, verdict, reason, seconds), logs/<suite>.<prog>.log,
 # dmesg.txt, current (what runs now), done (written last).
 # Every program is checked for exit status, timeout and new kernel warnings.
 
@@ -263,8 +263,11 @@ EOF
 		verdict=skip
 		[ "$skip" -eq 0 ] && skip=1
 	elif [ $((pass + fail + skip)) -eq 0 ]; then
-		verdict=ok	# a program without TAP points counts once, by its status
-		pass=1
+		# A program that printed no TAP point tested nothing we can see:
+		# exiting 0 is not a pass.
+		reason="no TAP test point (exit status $status)"
+		verdict=fail
+		fail=1
 	else
 		verdict=ok
 	fi
@@ -275,7 +278,7 @@ EOF
 	skip) tap "ok $n $name # SKIP $skipwhy" ;;
 	fail) tap "not ok $n $name # ${reason:-failed test points} (${secs}s)" ;;
 	esac
-	printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$pass" "$fail" "$skip" "$verdict" "$reason" >>"$R/results.tsv"
+	printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$pass" "$fail" "$skip" "$verdict" "$reason" "$secs" >>"$R/results.tsv"
 done <"$VMTEST_TESTLIST"
 
 # --- end of run: nothing of ours may stay loaded ---------------------------------

@@ -122,7 +122,7 @@ report_lane() {
 	fi
 	# Show what failed, with the program's own output.
 	local name pass fail skip verdict reason log
-	while IFS=$'\t' read -r name pass fail skip verdict reason; do
+	while IFS=$'\t' read -r name pass fail skip verdict reason _secs; do
 		[ "$verdict" = fail ] || continue
 		failed=1
 		log=$results/logs/$(echo "$name" | tr '/' '.').log
@@ -133,4 +133,14 @@ report_lane() {
 		{ p += $2; f += $3; s += $4 }
 		END { printf "[%s] %d ok, %d not ok, %d skipped, in %ds\n", lane, p, f, s, secs }' "$tsv"
 	return $failed
+}
+
+# kernel_suites: the VM suites that test our kernel code (every suite whose
+# settings do not say debug_lane=0): what the debug lane and `make
+# check-fast` run.
+kernel_suites() {
+	local settings
+	for settings in "$TOP"/tests/vm/*/settings; do
+		grep -qx 'debug_lane=0' "$settings" || basename "$(dirname "$settings")"
+	done
 }

@@ -13,13 +13,15 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
 # Debian's ${ADVEE_ARM_TRIPLET} builds of the libraries (scripts/fetch-arm-sysroot.sh, passed
 # by scripts/build-userland.sh as ADVEE_ARM_SYSROOT): searched after the
 # toolchain's own root; pkg-config reads only their .pc files and prefixes
-# their paths with the sysroot; the linker resolves their DT_NEEDED there.
+# their paths with the sysroot; the linker resolves their DT_NEEDED there,
+# and finds there the libraries that Debian's linker scripts name
+# (libncurses.so is "INPUT(libncurses.so.6 -ltinfo)").
 if(ADVEE_ARM_SYSROOT)
   set(CMAKE_LIBRARY_ARCHITECTURE ${ADVEE_ARM_TRIPLET})
   list(APPEND CMAKE_FIND_ROOT_PATH ${ADVEE_ARM_SYSROOT})
   set(ENV{PKG_CONFIG_SYSROOT_DIR} ${ADVEE_ARM_SYSROOT})
   set(ENV{PKG_CONFIG_LIBDIR} "${ADVEE_ARM_SYSROOT}/usr/lib/${ADVEE_ARM_TRIPLET}/pkgconfig:${ADVEE_ARM_SYSROOT}/usr/share/pkgconfig")
   set(CMAKE_EXE_LINKER_FLAGS_INIT
-    "-Wl,-rpath-link,${ADVEE_ARM_SYSROOT}/usr/lib/${ADVEE_ARM_TRIPLET} -Wl,-rpath-link,${ADVEE_ARM_SYSROOT}/lib/${ADVEE_ARM_TRIPLET}")
+    "-Wl,-rpath-link,${ADVEE_ARM_SYSROOT}/usr/lib/${ADVEE_ARM_TRIPLET} -Wl,-rpath-link,${ADVEE_ARM_SYSROOT}/lib/${ADVEE_ARM_TRIPLET} -L${ADVEE_ARM_SYSROOT}/usr/lib/${ADVEE_ARM_TRIPLET} -L${ADVEE_ARM_SYSROOT}/lib/${ADVEE_ARM_TRIPLET}")
   set(CMAKE_SHARED_LINKER_FLAGS_INIT "${CMAKE_EXE_LINKER_FLAGS_INIT}")
 endif()

@@ -13,7 +13,6 @@ kver=$(ls "$DEST/lib/modules" 2>/dev/null | head -1)
 tap_diag "modules staged for ${kver:-nothing}"
 tap_ok "the staging tree matches the list in docs/install.md" \
 	"$VMTEST_REPO/scripts/install-manifest.sh" "$DEST" "$kver"
-"$VMTEST_REPO/scripts/install-manifest.sh" "$DEST" "$kver" | grep '^not built yet' | sed 's/^/# /'
 
 test_only=$(cd "$DEST" && find . -name 'vmtest_echo.ko' -o -name 'ts7800-sim.ko')
 tap_is "no test-only module installed" "$test_only" ""
