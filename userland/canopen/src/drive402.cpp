@@ -107,7 +107,7 @@ void Drive402::boot(Done done) {
   master_.nmt(NmtCommand::kEnterPreOperational, cfg_.node);
   std::vector<SdoWrite> hb;
   hb.push_back(SdoWrite::of<std::uint16_t>(0x1017, 0, cfg_.heartbeat_ms));
-  if (cfg_.master_heartbeat_timeout_ms && master_.heartbeat_producer().period().count() > 0)
+  if (cfg_.master_heartbeat_timeout_ms && master_.heartbeat_period().count() > 0)
     hb.push_back(SdoWrite::of<std::uint32_t>(
         0x1016, 1, (static_cast<std::uint32_t>(master_.config().node_id) << 16) | cfg_.master_heartbeat_timeout_ms));
   run_sdo_writes(sdo, std::move(hb), [this](const SdoSequenceResult& r) {

@@ -74,8 +74,7 @@ void HeartbeatProducer::poll() {
   const TimePoint now = now_();
   if (now < next_) return;
   send_(heartbeat_frame(node_, state_));
-  next_ += period_;
-  if (next_ <= now) next_ = now + period_;  // fell behind: do not burst
+  next_ = next_period(next_, now, period_);
 }
 
 std::optional<TimePoint> HeartbeatProducer::deadline() const {

@@ -14,7 +14,21 @@ Master::Master(MasterConfig cfg, FrameSender send, NowFn now, WallClockFn wall)
       hb_producer_(cfg_.node_id, send_, now_),
       sync_(send_, now_),
       time_(send_, now_, std::move(wall)) {
-  if (cfg_.heartbeat_period.count() > 0) hb_producer_.set_period(cfg_.heartbeat_period);
+  hb_producer_.set_state(nmt_state_);
+  set_heartbeat_period(cfg_.heartbeat_period);
+}
+
+void Master::set_heartbeat_period(Duration period) {
+  if (period.count() > 0 && !booted_up_) {
+    booted_up_ = true;
+    send_(heartbeat_frame(cfg_.node_id, NmtState::kBootUp));
+  }
+  hb_producer_.set_period(period);
+}
+
+void Master::set_nmt_state(NmtState s) {
+  nmt_state_ = s;
+  hb_producer_.set_state(s);
 }
 
 void Master::handle(const CanFrame& f) {
@@ -40,11 +54,11 @@ void Master::handle(const CanFrame& f) {
 }
 
 void Master::on_heartbeat(const HeartbeatUpdate& u) {
-  // A node that rebooted forgets every pending SDO transfer.
-  if (u.event == HeartbeatEvent::kBootUp) {
-    auto it = sdo_.find(u.node);
-    if (it != sdo_.end() && it->second->busy()) it->second->cancel_all(SdoAbort::kGeneral);
-  }
+  // A boot-up does not cancel the node's SDO transfers: which of our requests
+  // reached it before it rebooted cannot be told from here (a request sent
+  // while its boot-up waited in our receive queue did), and some nodes repeat
+  // their boot-up without resetting. A transfer the node lost ends with its
+  // abort or the step timeout; the drivers re-boot the node on this event.
   auto listeners = hb_listeners_;  // a listener may remove itself
   for (auto& [id, cb] : listeners) cb(u);
 }

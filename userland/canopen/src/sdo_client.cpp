@@ -21,6 +21,16 @@ constexpr std::uint8_t kToggle = 0x10;
 constexpr std::uint8_t kExpedited = 0x02;
 constexpr std::uint8_t kSizeIndicated = 0x01;
 constexpr std::size_t kSegmentBytes = 7;
+
+// Initiate responses and aborts carry index and sub-index in bytes 1-3;
+// segment responses carry data there.
+bool carries_multiplexer(const CanFrame& f) {
+  const std::uint8_t cs = f.data[0] & kCsMask;
+  return cs == kScsInitiateUpload || cs == kScsInitiateDownload || f.data[0] == kAbort;
+}
+std::pair<std::uint16_t, std::uint8_t> multiplexer(const CanFrame& f) {
+  return {load_le<std::uint16_t>(std::span(f.data).subspan(1, 2)), f.data[3]};
+}
 }  // namespace
 
 SdoClient::SdoClient(std::uint8_t node, FrameSender send, NowFn now, Duration timeout)
@@ -69,7 +79,12 @@ void SdoClient::start_active() {
   if (r.upload) {
     phase_ = Phase::kUploadInitiate;
     b[0] = kCcsInitiateUpload;
-  } else if (!r.data.empty() && r.data.size() <= 4) {
+  } else if (r.data.empty()) {
+    // Zero bytes: expedited without size indication. A segmented initiate
+    // with size 0 is legal but refused by some servers (CANopenNode).
+    phase_ = Phase::kDownloadInitiate;
+    b[0] = kCcsInitiateDownload | kExpedited;
+  } else if (r.data.size() <= 4) {
     phase_ = Phase::kDownloadInitiate;
     b[0] = static_cast<std::uint8_t>(kCcsInitiateDownload | ((4 - r.data.size()) << 2) | kExpedited |
                                      kSizeIndicated);
@@ -105,6 +120,7 @@ void SdoClient::send_abort(SdoAbort code) {
 }
 
 void SdoClient::abort_local(SdoAbort code) {
+  given_up_.emplace(active_->index, active_->sub);
   send_abort(code);
   finish({code, false, {}});
 }
@@ -120,18 +136,25 @@ void SdoClient::finish(SdoResult result) {
 }
 
 bool SdoClient::initiate_matches(const CanFrame& f) const {
-  return load_le<std::uint16_t>(std::span(f.data).subspan(1, 2)) == active_->index && f.data[3] == active_->sub;
+  return multiplexer(f) == std::pair(active_->index, active_->sub);
 }
 
 bool SdoClient::handle(const CanFrame& f) {
   if (f.id != cob::kSdoTx + node_ || f.rtr) return false;
-  if (!active_ || f.len < 1) return true;  // stale or stray response: ignore
+  if (!active_ || f.len < 4) return true;  // stale or stray response: ignore
   if (f.data[0] == kAbort) {
-    // An abort for another object is a leftover of a transfer we already gave up.
-    if (f.len >= 4 && !initiate_matches(f)) return true;
+    // The server has one transfer with us, so its abort ends the active one
+    // even when it names another object (some servers send zeros), unless
+    // it names the object of a transfer we gave up on: that one is late.
+    if (!initiate_matches(f) && multiplexer(f) == given_up_) return true;
     finish({static_cast<SdoAbort>(load_le<std::uint32_t>(std::span(f.data).subspan(4))), true, {}});
     return true;
   }
+  // A response that names another object is a late answer to an older
+  // transfer, whatever its kind: checked before the command specifier.
+  if (carries_multiplexer(f) && !initiate_matches(f)) return true;
+  const bool initiating = phase_ == Phase::kDownloadInitiate || phase_ == Phase::kUploadInitiate;
+  if (!initiating && carries_multiplexer(f)) return true;  // a repeated initiate answer
   if (active_->upload)
     on_upload_response(f);
   else
@@ -143,16 +166,9 @@ void SdoClient::on_download_response(const CanFrame& f) {
   const std::uint8_t cs = f.data[0] & kCsMask;
   if (phase_ == Phase::kDownloadInitiate) {
     if (cs != kScsInitiateDownload) return abort_local(SdoAbort::kUnknownCommand);
-    if (!initiate_matches(f)) return;  // response to an older request
-    if (active_->data.empty() || active_->data.size() > 4) {
+    if (active_->data.size() > 4) {
       phase_ = Phase::kDownloadSegment;
       toggle_ = false;
-      if (active_->data.empty()) {
-        // Zero-length domain: one empty last segment.
-        std::array<std::uint8_t, 8> b{};
-        b[0] = static_cast<std::uint8_t>((kSegmentBytes << 1) | 1);
-        return send_request(b);
-      }
       return send_download_segment();
     }
     return finish({});
@@ -171,7 +187,6 @@ void SdoClient::on_upload_response(const CanFrame& f) {
   const std::uint8_t cs = b0 & kCsMask;
   if (phase_ == Phase::kUploadInitiate) {
     if (cs != kScsInitiateUpload) return abort_local(SdoAbort::kUnknownCommand);
-    if (!initiate_matches(f)) return;
     if (b0 & kExpedited) {
       const std::size_t n = (b0 & kSizeIndicated) ? 4 - ((b0 >> 2) & 3) : 4;
       SdoResult r;
@@ -217,6 +232,7 @@ void SdoClient::cancel_all(SdoAbort why) {
   std::deque<Request> pending;
   pending.swap(queue_);
   if (active_) {
+    given_up_.emplace(active_->index, active_->sub);
     send_abort(why);
     Request r = std::move(*active_);
     active_.reset();

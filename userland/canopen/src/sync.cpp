@@ -35,8 +35,7 @@ void SyncProducer::poll() {
     counter_ = counter_ >= overflow_ ? 1 : static_cast<std::uint8_t>(counter_ + 1);
   }
   send_(f);
-  next_ += period_;
-  if (next_ <= now) next_ = now + period_;  // missed periods are skipped, not replayed
+  next_ = next_period(next_, now, period_);
   if (on_sync_) on_sync_(sent);
 }
 
@@ -78,8 +77,7 @@ void TimeProducer::poll() {
   const TimePoint now = now_();
   if (now < next_) return;
   send_(time_of_day_frame(wall_()));
-  next_ += period_;
-  if (next_ <= now) next_ = now + period_;
+  next_ = next_period(next_, now, period_);
 }
 
 std::optional<TimePoint> TimeProducer::deadline() const {

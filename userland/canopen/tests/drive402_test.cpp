@@ -228,7 +228,7 @@ TEST_F(DriveTest, DeadMasterHeartbeatMakesTheDriveQuickStop) {
   ASSERT_FALSE(wait([&](auto d) { epos->enable(d); }));
   epos->set_target(0x60FF, 0, 800);
   run_for(200ms);
-  master.heartbeat_producer().set_period(0ms);  // the master "dies"
+  master.set_heartbeat_period(0ms);  // the master "dies"
   run_for(600ms);
   EXPECT_EQ(epos_sim.state(), State::kQuickStopActive);
   EXPECT_EQ(epos_sim.velocity(), 0);

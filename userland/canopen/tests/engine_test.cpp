@@ -88,20 +88,21 @@ TEST_F(EngineTest, HeartbeatDeadlineIsExposedForTheEventLoop) {
 }
 
 TEST_F(EngineTest, HeartbeatProducerSendsAtOnceAndThenEveryPeriod) {
-  master.heartbeat_producer().set_period(100ms);
+  master.set_heartbeat_period(100ms);
   bus.deliver();
-  ASSERT_EQ(seen.size(), 1u);
-  EXPECT_EQ(to_string(seen[0]), "77F#05");
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(to_string(seen[0]), "77F#00");  // boot-up
+  EXPECT_EQ(to_string(seen[1]), "77F#7F");
   tick(99ms);
-  EXPECT_EQ(seen.size(), 1u);
-  tick(1ms);
   EXPECT_EQ(seen.size(), 2u);
+  tick(1ms);
+  EXPECT_EQ(seen.size(), 3u);
   tick(100ms);
   tick(100ms);
-  EXPECT_EQ(seen.size(), 4u);
-  master.heartbeat_producer().set_period(0ms);
+  EXPECT_EQ(seen.size(), 5u);
+  master.set_heartbeat_period(0ms);
   tick(1s);
-  EXPECT_EQ(seen.size(), 4u);
+  EXPECT_EQ(seen.size(), 5u);
 }
 
 TEST_F(EngineTest, SyncCounterRunsFromOneToOverflowAndWraps) {
@@ -223,15 +224,28 @@ TEST_F(EngineTest, SdoResponsesAreRoutedPerNode) {
   EXPECT_EQ(done, std::vector<int>{3});
 }
 
-TEST_F(EngineTest, BootUpOfANodeCancelsItsPendingSdo) {
-  std::optional<SdoAbort> result;
-  master.sdo(5).upload(0x1000, 0, [&](const SdoResult& r) { result = r.abort; });
+TEST_F(EngineTest, BootUpDoesNotCancelTransfersWhoseReplyArrives) {
+  std::vector<SdoResult> r;
+  auto record = [&](const SdoResult& x) { r.push_back(x); };
+  master.sdo(5).upload(0x1000, 0, record);
+  master.sdo(5).upload(0x1001, 0, record);
+  master.sdo(5).upload(0x1002, 0, record);
+  // The answer and then a (repeated) boot-up in one batch: the next request
+  // went out after the boot-up reached us, so the node answers it.
+  bus.sender(node_port)(make_frame(0x585, {0x43, 0x00, 0x10, 0x00, 1, 0, 0, 0, }));
+  bus.sender(node_port)(heartbeat_frame(5, NmtState::kBootUp));
+  bus.deliver();
+  from_node(make_frame(0x585, {0x43, 0x01, 0x10, 0x00, 2, 0, 0, 0}));
+  // A boot-up while a request is outstanding, then its answer.
   from_node(heartbeat_frame(5, NmtState::kBootUp));
-  EXPECT_EQ(result, SdoAbort::kGeneral);
+  from_node(make_frame(0x585, {0x43, 0x02, 0x10, 0x00, 3, 0, 0, 0}));
+  ASSERT_EQ(r.size(), 3u);
+  for (const auto& x : r) EXPECT_TRUE(x.ok()) << x.error().message();
+  EXPECT_EQ(r[2].data, (std::vector<std::uint8_t>{3, 0, 0, 0}));
 }
 
 TEST_F(EngineTest, NextDeadlineIsTheEarliestOfAllTimers) {
-  master.heartbeat_producer().set_period(100ms);
+  master.set_heartbeat_period(100ms);
   master.sync().start(30ms);
   master.sdo(4).upload(0x1000, 0, nullptr);  // 100 ms SDO timeout
   EXPECT_EQ(*master.next_deadline(), clock.now() + 30ms);

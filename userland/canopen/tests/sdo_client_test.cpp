@@ -248,6 +248,54 @@ TEST_F(SdoClientTest, CallbackMayQueueTheNextRequest) {
   EXPECT_EQ(last_request(), request({0x40, 0x18, 0x10, 0x01}));
 }
 
+TEST_F(SdoClientTest, LateAnswerOfAnotherKindDoesNotAbortTheNextTransfer) {
+  client.write<std::int8_t>(0x6060, 0, 3, record());
+  reply({0x4F, 0x00, 0x10, 0x00, 0x11});  // late upload answer for 0x1000 (a transfer given up)
+  EXPECT_TRUE(results.empty()) << "the download must not end on an answer for another object";
+  EXPECT_EQ(at_server.size(), 1u) << "no abort frame: " << to_string(at_server.back());
+  reply({0x60, 0x60, 0x60, 0x00});
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_TRUE(results[0].ok()) << results[0].error().message();
+  // And the other way round: a late download confirmation during an upload.
+  client.upload(0x1001, 0, record());
+  reply({0x60, 0x40, 0x60, 0x00});
+  EXPECT_EQ(results.size(), 1u);
+  reply({0x4F, 0x01, 0x10, 0x00, 0x22});
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_TRUE(results[1].ok()) << results[1].error().message();
+}
+
+TEST_F(SdoClientTest, ServerAbortWithAnotherIndexEndsTheTransferAtOnce) {
+  client.upload(0x1001, 0, record());
+  // Some servers fill the abort's multiplexer with zeros.
+  reply({0x80, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x06});
+  ASSERT_EQ(results.size(), 1u) << "the abort must end the transfer, not the timeout";
+  EXPECT_EQ(results[0].abort, SdoAbort::kNoObject);
+  EXPECT_TRUE(results[0].aborted_by_server);
+}
+
+TEST_F(SdoClientTest, LateServerAbortOfATransferGivenUpIsIgnored) {
+  client.upload(0x1000, 0, record());
+  client.upload(0x1001, 0, record());
+  clock.advance(100ms);
+  client.poll();  // 0x1000 times out, 0x1001 starts
+  ASSERT_EQ(results.size(), 1u);
+  reply({0x80, 0x00, 0x10, 0x00, 0x00, 0x00, 0x04, 0x05});  // the server's late abort of 0x1000
+  EXPECT_EQ(results.size(), 1u);
+  reply({0x4F, 0x01, 0x10, 0x00, 0x22});
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_TRUE(results[1].ok());
+}
+
+TEST_F(SdoClientTest, ZeroLengthDownloadIsExpeditedWithoutSize) {
+  client.download(0x2000, 1, {}, record());
+  EXPECT_EQ(last_request(), request({0x22, 0x00, 0x20, 0x01})) << "not a segmented initiate with size 0";
+  reply({0x60, 0x00, 0x20, 0x01});
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_TRUE(results[0].ok());
+  EXPECT_EQ(at_server.size(), 1u) << "no segment follows";
+}
+
 TEST(SdoAbortTest, UnknownVendorCodeStillHasAMessage) {
   EXPECT_EQ(describe(static_cast<SdoAbort>(0x12345678)), "unknown abort code");
   EXPECT_EQ(describe(SdoAbort::kTimeout), "SDO protocol timed out");

@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
       std::uint64_t seen = 0;
       master.heartbeat_consumer().monitor(1, 300ms);
       master.heartbeat_consumer().monitor(2, 300ms);
-      master.heartbeat_producer().set_period(100ms);
+      master.set_heartbeat_period(100ms);
       // Measure from the first flood frame until the bus has been quiet for
       // 500 ms (or -d seconds in all), so the CPU share is that of the flood.
       double cpu0 = 0;

@@ -57,7 +57,7 @@ void SdoServer::on_initiate_download(const CanFrame& f) {
   const std::uint8_t b0 = f.data[0];
   std::array<std::uint8_t, 8> ok{0x60, f.data[1], f.data[2], f.data[3]};
   if (b0 & 0x02) {  // expedited
-    const std::size_t n = (b0 & 0x01) ? 4 - ((b0 >> 2) & 3) : 4;
+    const std::size_t n = (b0 & 0x01) ? 4 - ((b0 >> 2) & 3) : unsized_expedited_length(index_, sub_, f);
     const SdoAbort a = od_.write(index_, sub_, f.payload().subspan(4, n));
     if (a != SdoAbort::kNone) return abort(index_, sub_, a);
     phase_ = Phase::kIdle;
@@ -68,6 +68,17 @@ void SdoServer::on_initiate_download(const CanFrame& f) {
   toggle_ = false;
   phase_ = Phase::kDownload;
   respond(ok);
+}
+
+// Expedited without size indication: a fixed-size object takes its size, a
+// string the bytes up to the first NUL (an empty string is how a zero-length
+// download arrives, as CANopenNode reads it).
+std::size_t SdoServer::unsized_expedited_length(std::uint16_t index, std::uint8_t sub, const CanFrame& f) const {
+  const OdEntry* e = od_.find(index, sub);
+  if (e && !e->variable_size && e->value.size() <= 4) return e->value.size();
+  std::size_t n = 0;
+  while (n < 4 && f.data[4 + n] != 0) ++n;
+  return n;
 }
 
 void SdoServer::on_download_segment(const CanFrame& f) {

@@ -70,6 +70,8 @@ void DriveController::start(Started done) {
     std::string why;
   };
   auto join = std::make_shared<Join>();
+  // CiA 302-2: the NMT master enters operational, then starts its slaves.
+  master_.set_nmt_state(canopen::NmtState::kOperational);
   auto one = [this, join, done](bool ok, const std::string& why) {
     if (!ok) join->why += (join->why.empty() ? "" : "; ") + why;
     if (--join->left > 0) return;

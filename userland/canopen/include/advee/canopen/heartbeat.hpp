@@ -73,7 +73,7 @@ class HeartbeatProducer {
   FrameSender send_;
   NowFn now_;
   Duration period_{};
-  NmtState state_ = NmtState::kOperational;
+  NmtState state_ = NmtState::kPreOperational;
   TimePoint next_{};
 };
 

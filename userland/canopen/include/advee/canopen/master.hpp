@@ -36,7 +36,10 @@ class TimedService {
 struct MasterConfig {
   std::uint8_t node_id = 0x7F;  // the master's own node-ID (heartbeat producer)
   Duration sdo_timeout = SdoClient::kDefaultTimeout;
-  Duration heartbeat_period{};  // zero: the master does not produce heartbeat
+  // Zero: the master does not produce heartbeat and stays silent. Otherwise it
+  // is a node on the network: boot-up message first, then heartbeats that
+  // carry its NMT state (set_nmt_state()).
+  Duration heartbeat_period{};
 };
 
 class Master {
@@ -62,7 +65,17 @@ class Master {
   HeartbeatConsumer& heartbeat_consumer() { return hb_consumer_; }
   // Guarding events reach the heartbeat listeners (same event types).
   NodeGuarding& node_guarding() { return guarding_; }
-  HeartbeatProducer& heartbeat_producer() { return hb_producer_; }
+  const HeartbeatProducer& heartbeat_producer() const { return hb_producer_; }
+  // The master's own heartbeat: the first non-zero period sends the boot-up
+  // message (0x700 + node-ID, 0x00) before the first heartbeat; zero stops it.
+  void set_heartbeat_period(Duration period);
+  Duration heartbeat_period() const { return hb_producer_.period(); }
+  // The master's own NMT state (pre-operational after its boot-up), which its
+  // heartbeat reports. The owner sets it: operational while it runs the
+  // network (CiA 302-2: the NMT master enters operational, then starts the
+  // slaves).
+  void set_nmt_state(NmtState s);
+  NmtState nmt_state() const { return nmt_state_; }
   SyncProducer& sync() { return sync_; }
   // TIME on demand, or periodically from the system wall clock (replace it
   // with set_wall_clock() in tests).
@@ -112,6 +125,8 @@ class Master {
   FrameListener fallback_;
   FrameListener observer_;
   std::vector<TimedService*> services_;
+  NmtState nmt_state_ = NmtState::kPreOperational;
+  bool booted_up_ = false;  // the boot-up message went out
 };
 
 }  // namespace advee::canopen

@@ -107,6 +107,9 @@ class SdoClient {
   std::optional<std::size_t> upload_size_;
   std::vector<std::uint8_t> received_;
   TimePoint deadline_{};
+  // The object of the last transfer this client gave up on (timeout, local
+  // abort, cancel): a late server abort for it is not about the active one.
+  std::optional<std::pair<std::uint16_t, std::uint8_t>> given_up_;
 };
 
 }  // namespace advee::canopen

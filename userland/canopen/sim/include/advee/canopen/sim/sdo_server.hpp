@@ -37,6 +37,7 @@ class SdoServer {
   void respond(const std::array<std::uint8_t, 8>& b);
   void abort(std::uint16_t index, std::uint8_t sub, SdoAbort code);
   void on_initiate_download(const CanFrame& f);
+  std::size_t unsized_expedited_length(std::uint16_t index, std::uint8_t sub, const CanFrame& f) const;
   void on_download_segment(const CanFrame& f);
   void on_initiate_upload(const CanFrame& f);
   void on_upload_segment(const CanFrame& f);
