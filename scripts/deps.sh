@@ -35,6 +35,8 @@ kver=$("$TOP/scripts/kver.sh")
 # ARM kernels for cross builds and the ARM VM lane (cached in .cache/arm).
 arm_tree armhf armmp >/dev/null
 arm_tree armel marvell >/dev/null
+# The Debian armhf tools the ARM VM lane's shell programs call.
+"$TOP/scripts/fetch-arm-userland.sh" armhf >/dev/null
 # checkpatch and modpost sources from linux-source-6.1 (cached in .cache/linux-source).
 "$TOP/scripts/kernel-source.sh" >/dev/null
 say "dependencies ready (x86_64 kernel $kver)"

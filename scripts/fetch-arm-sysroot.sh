@@ -14,14 +14,7 @@ set -euo pipefail
 
 debarch=${1:?debian architecture (armhf|armel)}
 cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$debarch
-# The lists and sources of the private apt setup come from fetch-arm-kernel.sh.
-if ! compgen -G "$cache/lists/*_Packages*" >/dev/null; then
-	"$TOP/scripts/fetch-arm-kernel.sh" "$debarch" "$(arm_flavour "$debarch")" >/dev/null
-fi
-apt_opts=(-q -oAPT::Architecture="$debarch" -oAPT::Architectures="$debarch"
-	-oDir::State::Lists="$cache/lists" -oDir::State::status="$cache/status"
-	-oDir::Etc::SourceParts="$cache/sources" -oDir::Etc::SourceList="$cache/sources/sources.list"
-	-oDir::Cache="$cache/apt-cache" -oDebug::NoLocking=1 -oAPT::Sandbox::User=root)
+arm_apt_opts "$debarch"
 
 # The -dev packages and the runtime libraries behind every .so they link
 # (the cross toolchain brings libc, libstdc++, libgcc); the header-only ones

@@ -28,3 +28,19 @@ arm_flavour() {
 	*) die "no ARM flavour for $1" ;;
 	esac
 }
+
+# arm_apt_opts DEBARCH: set the array apt_opts to apt's options for the
+# private DEBARCH setup of fetch-arm-kernel.sh under the cache (its lists,
+# sources and an empty dpkg status: the machine's own apt is never touched),
+# running that script first when the lists are not there yet.
+arm_apt_opts() {
+	local cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$1
+	if ! compgen -G "$cache/lists/*_Packages*" >/dev/null; then
+		"$TOP/scripts/fetch-arm-kernel.sh" "$1" "$(arm_flavour "$1")" >/dev/null
+	fi
+	mkdir -p "$cache/apt-cache/archives/partial"
+	apt_opts=(-q -oAPT::Architecture="$1" -oAPT::Architectures="$1"
+		-oDir::State::Lists="$cache/lists" -oDir::State::status="$cache/status"
+		-oDir::Etc::SourceParts="$cache/sources" -oDir::Etc::SourceList="$cache/sources/sources.list"
+		-oDir::Cache="$cache/apt-cache" -oDebug::NoLocking=1 -oAPT::Sandbox::User=root)
+}

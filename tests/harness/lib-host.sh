@@ -1,22 +1,27 @@
 # SPDX-License-Identifier: GPL-2.0
 # Host-side helpers shared by the VM lanes (source it after scripts/lib.sh).
 
-# list_tests LANE PROGDIR [FILTER...]: print "suite program path timeout" for
-# every VM test program of the lane. PROGDIR holds the compiled C programs as
-# the guest sees them. Shell programs run only on the x86_64 lanes (the guest
-# has the host's tools there); other lanes run the suites marked portable=1.
+# list_tests LANE PROGDIR REPODIR [FILTER...]: print "suite program path
+# timeout" for every VM test program of the lane. PROGDIR holds the compiled C
+# programs and REPODIR the repository (the shell programs) as the guest sees
+# them. The x86_64 lanes run every suite; other lanes run the suites marked
+# portable=1, all their programs but those the settings name in
+# not_portable= (the ARM guest has Debian's tools: fetch-arm-userland.sh).
 # Programs named bench* are benchmarks: listed only when VMTEST_BENCH=1 (make
 # bench), and then only they are.
 list_tests() {
-	local lane=$1 progdir=$2
-	shift 2
-	local suite_dir suite timeout src prog f
+	local lane=$1 progdir=$2 repodir=$3
+	shift 3
+	local suite_dir suite timeout src prog f excluded
 	for suite_dir in "$TOP"/tests/vm/*/; do
 		suite=$(basename "$suite_dir")
 		[ -f "$suite_dir/settings" ] || { say "tests/vm/$suite has no settings file: skipped"; continue; }
+		excluded=
 		case $lane in
 		x86_64*) ;;
-		*) grep -qx 'portable=1' "$suite_dir/settings" || continue ;;
+		*)
+			grep -qx 'portable=1' "$suite_dir/settings" || continue
+			excluded=" $(sed -n 's/^not_portable=//p' "$suite_dir/settings" | tr -d '"') " ;;
 		esac
 		timeout=$(sed -n 's/^timeout=\([0-9][0-9]*\)$/\1/p' "$suite_dir/settings")
 		timeout=${timeout:-45}
@@ -26,13 +31,11 @@ list_tests() {
 					echo "$(basename "$src" .c) $progdir/$suite/$(basename "$src" .c)"
 				fi
 			done
-			case $lane in
-			x86_64*)
-				for src in "$suite_dir"*.sh; do
-					if [ -x "$src" ]; then echo "$(basename "$src" .sh) $src"; fi
-				done ;;
-			esac
+			for src in "$suite_dir"*.sh; do
+				if [ -x "$src" ]; then echo "$(basename "$src" .sh) $repodir/tests/vm/$suite/$(basename "$src")"; fi
+			done
 		} | sort | while read -r prog f; do
+			case $excluded in *" $prog "*) continue ;; esac
 			case $prog in
 			bench*) [ "${VMTEST_BENCH:-0}" = 1 ] || continue ;;
 			*) [ "${VMTEST_BENCH:-0}" = 1 ] && continue ;;

@@ -104,7 +104,7 @@ cp "$modules" "$results/modules.list"
 if [ -n "$run" ]; then
 	echo "main $(basename "$run" .sh) $run $([ "$interactive" = 1 ] && echo 604800 || echo 300)" >"$results/tests.list"
 else
-	list_tests x86_64 "$BUILD/tests/x86_64" "${tests[@]}" >"$results/tests.list"
+	list_tests x86_64 "$BUILD/tests/x86_64" "$TOP" "${tests[@]}" >"$results/tests.list"
 fi
 slowdown=${VMTEST_SLOWDOWN:-1}
 if [ "$slowdown" != 1 ]; then
