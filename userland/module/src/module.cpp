@@ -31,10 +31,15 @@ void on_cmd_state(const lcm::ReceiveBuffer*, const std::string&, const common::c
 
 }  // namespace
 
-Module::Module(ModuleOptions opts)
+Module::Module(ModuleOptions opts) : Module(std::move(opts), std::make_unique<MonotonicTimers>(), nullptr) {}
+
+Module::Module(ModuleOptions opts, TimerSource& timers) : Module(std::move(opts), nullptr, &timers) {}
+
+Module::Module(ModuleOptions opts, std::unique_ptr<TimerSource> own, TimerSource* external)
     : opts_(std::move(opts)),
       signals_(blocked_signals(opts_)),
-      announce_timer_(opts_.announce_period) {
+      own_timers_(std::move(own)),
+      timers_(external ? *external : *own_timers_) {
   // No transparent huge pages for a module (Debian's x86 kernels have THP
   // "always"): a thread's 8 MB stack otherwise gets a 2 MB page on its first
   // touch, a quarter of the whole stack's memory budget (bench/daemons.sh,
@@ -60,6 +65,7 @@ Module::Module(ModuleOptions opts)
     throw ModuleExit(ExitKind::Resource, 2, std::string("log directory: ") + e.what());
   }
   lcm_->subscribeFunction(std::string(msgs::kCmdState.name), &on_cmd_state, this);
+  announce_timer_ = timers_.every(opts_.announce_period, [this] { announce(); });
 }
 
 Module::~Module() = default;
@@ -93,7 +99,9 @@ void Module::on_state_change(std::function<void(State, State)> fn) {
 }
 
 void Module::every(std::chrono::nanoseconds period, std::function<void()> fn, bool only_in_run) {
-  periodics_.push_back({std::make_unique<PeriodicTimer>(period), std::move(fn), only_in_run});
+  periodics_.push_back(timers_.every(period, [this, fn = std::move(fn), only_in_run] {
+    if (!only_in_run || state_ == State::Run) fn();
+  }));
 }
 
 void Module::watch_fd(int fd, std::function<void()> fn) { fds_.emplace_back(fd, std::move(fn)); }
@@ -151,9 +159,8 @@ bool Module::run_once(std::chrono::milliseconds max_wait) {
   std::vector<pollfd> pfds;
   pfds.push_back({signals_.fd(), POLLIN, 0});
   pfds.push_back({lcm_->getFileno(), POLLIN, 0});
-  pfds.push_back({announce_timer_.fd(), POLLIN, 0});
   pfds.push_back({waker_.fd(), POLLIN, 0});
-  for (auto& p : periodics_) pfds.push_back({p.timer->fd(), POLLIN, 0});
+  pfds.push_back({timers_.fd(), POLLIN, 0});
   for (auto& [fd, fn] : fds_) pfds.push_back({fd, POLLIN, 0});
   const int n = ::poll(pfds.data(), pfds.size(), static_cast<int>(max_wait.count()));
   if (n < 0) {
@@ -166,8 +173,7 @@ bool Module::run_once(std::chrono::milliseconds max_wait) {
   if (ready(0))
     while (auto si = signals_.read()) handle_signal(*si);
   if (ready(1)) lcm_->handleTimeout(0);
-  if (ready(2) && announce_timer_.consume() > 0) announce();
-  if (ready(3)) {
+  if (ready(2)) {
     waker_.consume();
     std::vector<std::function<void()>> work;
     {
@@ -176,12 +182,9 @@ bool Module::run_once(std::chrono::milliseconds max_wait) {
     }
     for (auto& fn : work) fn();
   }
-  std::size_t i = 4;
-  for (auto& p : periodics_) {
-    if (ready(i++) && p.timer->consume() > 0 && (!p.only_in_run || state_ == State::Run)) p.fn();
-  }
+  if (ready(3)) timers_.dispatch();  // the announcement and every() jobs
   for (std::size_t k = 0; k < fds_.size(); ++k)
-    if (ready(i++)) fds_[k].second();
+    if (ready(4 + k)) fds_[k].second();
   return state_ != State::Terminate;
 }
 

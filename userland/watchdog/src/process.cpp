@@ -2,6 +2,8 @@
 #include "advee/watchdog/process.hpp"
 
 #include <signal.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,7 +15,7 @@ extern char** environ;
 
 namespace advee::watchdog {
 
-pid_t spawn_module(const ModuleSpec& spec, const std::map<std::string, std::string>& extra_env) {
+pid_t SystemProcesses::spawn(const ModuleSpec& spec, const std::map<std::string, std::string>& extra_env) {
   // Everything the child needs is built before fork: after it, in a process
   // with other threads (LCM's), only async-signal-safe calls are allowed.
   std::map<std::string, std::string> env;
@@ -55,9 +57,31 @@ pid_t spawn_module(const ModuleSpec& spec, const std::map<std::string, std::stri
   return pid;
 }
 
-void signal_group(pid_t pid, int signo) {
+void SystemProcesses::signal_group(pid_t pid, int signo) {
   if (pid <= 0) return;
   if (::kill(-pid, signo) < 0) ::kill(pid, signo);
+}
+
+std::optional<ChildExit> SystemProcesses::reap() {
+  int status = 0;
+  const pid_t pid = ::waitpid(-1, &status, WNOHANG);
+  if (pid <= 0) return std::nullopt;
+  return ChildExit{pid, status};
+}
+
+void SystemProcesses::wait_for_exit(module::Duration timeout) {
+  // SIGCHLD is blocked: take it from the pending set (reap() then finds the
+  // child). A SIGCHLD that was not blocked would just let this time out.
+  sigset_t chld;
+  sigemptyset(&chld);
+  sigaddset(&chld, SIGCHLD);
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(timeout).count();
+  timespec ts{};
+  if (ns > 0) {
+    ts.tv_sec = ns / 1'000'000'000;
+    ts.tv_nsec = ns % 1'000'000'000;
+  }
+  ::sigtimedwait(&chld, nullptr, &ts);
 }
 
 }  // namespace advee::watchdog

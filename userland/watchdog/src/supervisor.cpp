@@ -5,15 +5,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <lcm/lcm-cpp.hpp>
-#include <thread>
 
 #include "advee/module/exit_code.hpp"
 #include "advee/module/log_dir.hpp"
 #include "advee/module/subscription.hpp"
 #include "advee/module/time.hpp"
 #include "advee/msgs/channels.hpp"
-#include "advee/watchdog/process.hpp"
 #include "common/cmd_state_t.hpp"
 #include "common/data_module_phase_t.hpp"
 #include "common/data_state_t.hpp"
@@ -41,8 +40,8 @@ std::string ms_text(Millis d) { return std::to_string(d.count()) + " ms"; }
 
 }  // namespace
 
-Supervisor::Supervisor(module::Module& self, SupervisorConfig cfg)
-    : self_(self), cfg_(std::move(cfg)) {
+Supervisor::Supervisor(module::Module& self, SupervisorConfig cfg, Processes& processes)
+    : self_(self), cfg_(std::move(cfg)), processes_(processes) {
   for (const auto& spec : cfg_.modules) {
     Proc p{spec, Backoff(cfg_.backoff)};
     p.command = spec.start ? State::Run : State::Terminate;
@@ -83,6 +82,11 @@ std::string Supervisor::summary() const {
   return std::to_string(running) + "/" + std::to_string(procs_.size()) + " modules running";
 }
 
+void Supervisor::notify_systemd(SystemdNotifier& n) {
+  notifier_ = &n;
+  if (auto iv = n.ping_interval()) self_.every(*iv, [&n] { n.ping(); }, false);
+}
+
 void Supervisor::start() {
   for (auto& p : procs_) {
     if (p.command == State::Terminate)
@@ -90,6 +94,7 @@ void Supervisor::start() {
     else
       launch(p);
   }
+  if (notifier_) notifier_->ready(summary());
 }
 
 void Supervisor::publish(const Proc& p) {
@@ -103,7 +108,7 @@ void Supervisor::publish(const Proc& p) {
   m.exit_status = p.exit_status;
   m.next_start_ms = -1;
   if (p.phase == Phase::Terminated && p.command != State::Terminate) {
-    const auto left = std::chrono::duration_cast<Millis>(p.next_start - Clock::now()).count();
+    const auto left = std::chrono::duration_cast<Millis>(p.next_start - now()).count();
     m.next_start_ms = left < 0 ? 0 : static_cast<std::int32_t>(left);
   }
   m.command = static_cast<std::int8_t>(p.command);
@@ -114,7 +119,7 @@ void Supervisor::set_phase(Proc& p, Phase ph) {
   if (p.phase == ph) return;
   p.phase = ph;
   publish(p);
-  if (on_change_) on_change_();
+  if (notifier_) notifier_->status(summary());
 }
 
 void Supervisor::launch(Proc& p) {
@@ -124,17 +129,17 @@ void Supervisor::launch(Proc& p) {
   if (!self_.options().lcm_url.empty() && !p.spec.env.count("LCM_DEFAULT_URL"))
     extra["LCM_DEFAULT_URL"] = self_.options().lcm_url;
   try {
-    p.pid = spawn_module(p.spec, extra);
+    p.pid = processes_.spawn(p.spec, extra);
   } catch (const std::system_error& e) {
     self_.errors().report(Severity::Error, ErrorType::Resource, e.code().value(),
                           p.spec.name + ": cannot start: " + e.what());
-    p.next_start = Clock::now() + p.backoff.on_exit(Millis(0));
+    p.next_start = now() + p.backoff.on_exit(Millis(0));
     set_phase(p, Phase::Terminated);
     return;
   }
   if (p.started_once) ++p.restarts;
   p.started_once = true;
-  p.started = Clock::now();
+  p.started = now();
   p.killed = false;
   self_.errors().report(Severity::Notice, ErrorType::Unknown, 0,
                         p.spec.name + ": started " + p.spec.path + " as pid " +
@@ -150,9 +155,9 @@ void Supervisor::terminate(Proc& p, const std::string& why) {
                         p.spec.name + " (pid " + std::to_string(p.pid) + "): " + why +
                             ": SIGTERM");
   // SIGCONT too: a stopped process would keep SIGTERM pending forever.
-  signal_group(p.pid, SIGTERM);
-  signal_group(p.pid, SIGCONT);
-  p.kill_at = Clock::now() + cfg_.term_grace;
+  processes_.signal_group(p.pid, SIGTERM);
+  processes_.signal_group(p.pid, SIGCONT);
+  p.kill_at = now() + cfg_.term_grace;
   set_phase(p, Phase::Terminating);
 }
 
@@ -162,7 +167,7 @@ void Supervisor::on_announce(const common::data_state_t& m) {
   // An announcement from an older instance (or a stray copy started by hand)
   // must not keep a hung one alive.
   if (m.pid != 0 && m.pid != p->pid) return;
-  p->last_announce = Clock::now();
+  p->last_announce = now();
   if (p->phase == Phase::Starting) set_phase(*p, Phase::Running);
 }
 
@@ -191,14 +196,13 @@ void Supervisor::on_command(const common::cmd_state_t& m) {
 }
 
 void Supervisor::reap() {
-  for (;;) {
-    int status = 0;
-    const pid_t pid = ::waitpid(-1, &status, WNOHANG);
-    if (pid <= 0) return;
+  while (const auto child = processes_.reap()) {
+    const pid_t pid = child->pid;
+    const int status = child->status;
     Proc* p = find(pid);
     if (!p) continue;  // not ours (or already forgotten)
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    const auto ran = std::chrono::duration_cast<Millis>(Clock::now() - p->started);
+    const auto ran = std::chrono::duration_cast<Millis>(now() - p->started);
     p->exit_status = code;
     p->pid = 0;
     if (shut_down_ || p->command == State::Terminate) {
@@ -209,7 +213,7 @@ void Supervisor::reap() {
       continue;
     }
     const Millis delay = p->backoff.on_exit(ran);
-    p->next_start = Clock::now() + delay;
+    p->next_start = now() + delay;
     self_.errors().report(Severity::Warning, ErrorType::Unknown, code,
                           p->spec.name + ": ended after " + ms_text(ran) + " (" +
                               module::describe_exit_code(code) + "), restart in " +
@@ -220,32 +224,32 @@ void Supervisor::reap() {
 
 void Supervisor::check() {
   if (shut_down_) return;
-  const auto now = Clock::now();
+  const auto t = now();
   for (auto& p : procs_) {
     switch (p.phase) {
       case Phase::Down:
         break;
       case Phase::Starting:
-        if (now - p.started > cfg_.startup_grace)
+        if (t - p.started > cfg_.startup_grace)
           terminate(p, "no state announcement " + ms_text(cfg_.startup_grace) + " after start");
         break;
       case Phase::Running:
-        if (now - p.last_announce > cfg_.dead_after)
+        if (t - p.last_announce > cfg_.dead_after)
           terminate(p, "last state announcement " +
-                           ms_text(std::chrono::duration_cast<Millis>(now - p.last_announce)) +
+                           ms_text(std::chrono::duration_cast<Millis>(t - p.last_announce)) +
                            " ago");
         break;
       case Phase::Terminating:
-        if (!p.killed && now >= p.kill_at) {
+        if (!p.killed && t >= p.kill_at) {
           self_.errors().report(Severity::Warning, ErrorType::Timeout, 0,
                                 p.spec.name + " (pid " + std::to_string(p.pid) +
                                     "): still alive after SIGTERM: SIGKILL");
-          signal_group(p.pid, SIGKILL);
+          processes_.signal_group(p.pid, SIGKILL);
           p.killed = true;
         }
         break;
       case Phase::Terminated:
-        if (p.command != State::Terminate && now >= p.next_start) launch(p);
+        if (p.command != State::Terminate && t >= p.next_start) launch(p);
         break;
     }
   }
@@ -254,30 +258,36 @@ void Supervisor::check() {
 void Supervisor::shutdown() {
   if (shut_down_) return;
   shut_down_ = true;
+  if (notifier_) notifier_->stopping();
   bool any = false;
   for (auto& p : procs_) {
     if (p.pid > 0) {
-      signal_group(p.pid, SIGTERM);
-      signal_group(p.pid, SIGCONT);
+      processes_.signal_group(p.pid, SIGTERM);
+      processes_.signal_group(p.pid, SIGCONT);
       any = true;
     }
   }
-  const auto deadline = Clock::now() + cfg_.term_grace;
-  while (any && Clock::now() < deadline) {
+  // Wait for them, at most term_grace; SIGCHLD ends each wait at once.
+  const auto deadline = now() + cfg_.term_grace;
+  while (any) {
     reap();
-    any = false;
-    for (auto& p : procs_) any |= p.pid > 0;
-    if (any) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    any = std::any_of(procs_.begin(), procs_.end(), [](const Proc& p) { return p.pid > 0; });
+    const auto left = deadline - now();
+    if (!any || left <= module::Duration::zero()) break;
+    processes_.wait_for_exit(left);
   }
   for (auto& p : procs_) {
     if (p.pid > 0) {
-      signal_group(p.pid, SIGKILL);
-      int status;
-      ::waitpid(p.pid, &status, 0);
-      p.exit_status = 128 + SIGKILL;
-      p.pid = 0;
-      set_phase(p, Phase::Down);
+      self_.errors().report(Severity::Warning, ErrorType::Timeout, 0,
+                            p.spec.name + " (pid " + std::to_string(p.pid) +
+                                "): still alive after SIGTERM: SIGKILL");
+      processes_.signal_group(p.pid, SIGKILL);
     }
+  }
+  // SIGKILL cannot be refused: wait for each as long as it takes.
+  while (std::any_of(procs_.begin(), procs_.end(), [](const Proc& p) { return p.pid > 0; })) {
+    processes_.wait_for_exit(std::chrono::milliseconds(100));
+    reap();
   }
 }
 

@@ -39,14 +39,10 @@ int main(int argc, char** argv) {
     cfg.self.extra_signals.push_back(SIGCHLD);
     module::Module self(cfg.self);
     watchdog::SystemdNotifier notifier;
-    watchdog::Supervisor sup(self, cfg);
-    sup.on_change([&] { notifier.status(sup.summary()); });
-    if (auto iv = notifier.ping_interval()) self.every(*iv, [&] { notifier.ping(); }, false);
-    self.on_state_change([&](module::State, module::State to) {
-      if (to == module::State::Terminate) notifier.stopping();
-    });
+    watchdog::SystemProcesses processes;
+    watchdog::Supervisor sup(self, cfg, processes);
+    sup.notify_systemd(notifier);
     sup.start();
-    notifier.ready(sup.summary());
     return self.run();
   });
 }

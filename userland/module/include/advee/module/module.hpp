@@ -10,7 +10,8 @@
 // CM_CMD_STATE messages addressed to the module (target == name or "*")
 // move the state machine when the transition table allows it; SIGTERM,
 // SIGINT and SIGHUP mean TERMINATE. Everything runs on the thread that calls
-// run(); other threads talk to it through post().
+// run(); other threads talk to it through post(). Time comes from a
+// TimerSource: the real monotonic one by default, a ManualTimers in tests.
 #pragma once
 
 #include <chrono>
@@ -27,6 +28,7 @@
 #include "advee/module/periodic.hpp"
 #include "advee/module/signals.hpp"
 #include "advee/module/state.hpp"
+#include "advee/module/timers.hpp"
 
 namespace lcm {
 class LCM;
@@ -42,6 +44,8 @@ class Module {
  public:
   // Throws ModuleExit (resource) when LCM or the log directory cannot be set up.
   explicit Module(ModuleOptions opts);
+  // With the caller's time source (which must outlive the module).
+  Module(ModuleOptions opts, TimerSource& timers);
   ~Module();
   Module(const Module&) = delete;
   Module& operator=(const Module&) = delete;
@@ -50,6 +54,8 @@ class Module {
   const ModuleOptions& options() const { return opts_; }
   lcm::LCM& lcm() { return *lcm_; }
   ErrorReporter& errors() { return *errors_; }
+  // The loop's time: read now() here, not from a clock of your own.
+  TimerSource& timers() { return timers_; }
   State state() const { return state_; }
   // Empty when the module has no log directory.
   const std::filesystem::path& log_dir() const { return log_dir_; }
@@ -57,8 +63,8 @@ class Module {
   // Called on every state change, after the state changed and before the
   // announcement. Throwing ModuleExit ends run() with its code.
   void on_state_change(std::function<void(State from, State to)> fn);
-  // fn every `period` (timerfd); with only_in_run it is skipped outside RUN,
-  // which is how PAUSE stops a driver's polling.
+  // fn every `period` (the first time one period from now); with only_in_run
+  // it is skipped outside RUN, which is how PAUSE stops a driver's polling.
   void every(std::chrono::nanoseconds period, std::function<void()> fn, bool only_in_run = true);
   // fn when fd becomes readable (level-triggered: fn must consume it).
   void watch_fd(int fd, std::function<void()> fn);
@@ -82,22 +88,20 @@ class Module {
   bool run_once(std::chrono::milliseconds max_wait);
 
  private:
-  struct Periodic {
-    std::unique_ptr<PeriodicTimer> timer;
-    std::function<void()> fn;
-    bool only_in_run;
-  };
+  Module(ModuleOptions opts, std::unique_ptr<TimerSource> own, TimerSource* external);
   void handle_signal(const signalfd_siginfo& si);
 
   ModuleOptions opts_;
   SignalFd signals_;  // first: the mask must be in place before LCM starts threads
+  std::unique_ptr<TimerSource> own_timers_;  // before every Timer: they cancel into it
+  TimerSource& timers_;
   std::unique_ptr<lcm::LCM> lcm_;
   std::filesystem::path log_dir_;
   std::unique_ptr<ErrorReporter> errors_;
   State state_ = State::Init;
-  PeriodicTimer announce_timer_;
+  Timer announce_timer_;
   Waker waker_;
-  std::vector<Periodic> periodics_;
+  std::vector<Timer> periodics_;
   std::vector<std::pair<int, std::function<void()>>> fds_;
   std::vector<std::pair<int, std::function<void(const signalfd_siginfo&)>>> signal_handlers_;
   std::vector<std::function<void(State, State)>> state_hooks_;

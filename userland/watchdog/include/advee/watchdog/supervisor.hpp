@@ -5,7 +5,10 @@
 // is older than dead_after (SIGTERM + SIGCONT, SIGKILL after term_grace),
 // restarts it with back-off, and obeys CM_CMD_STATE addressed to a module
 // (TERMINATE keeps it down, RUN starts it again). Every phase change is
-// published on CM_DATA_MODULES and reported as a notice or warning.
+// published on CM_DATA_MODULES and reported as a notice or warning. Time is
+// the Module's (its TimerSource) and processes are started, signalled and
+// reaped through Processes, so the unit tests run all of it on a manual
+// clock with fake processes.
 #pragma once
 
 #include <sys/types.h>
@@ -21,6 +24,8 @@
 #include "advee/module/subscription.hpp"
 #include "advee/watchdog/backoff.hpp"
 #include "advee/watchdog/config.hpp"
+#include "advee/watchdog/process.hpp"
+#include "advee/watchdog/systemd_notify.hpp"
 
 namespace common {
 class data_state_t;
@@ -34,22 +39,24 @@ std::string_view to_string(Phase p);
 
 class Supervisor {
  public:
-  using Clock = std::chrono::steady_clock;
-
   // `self` is the supervisor's own Module (created with SIGCHLD among its
-  // extra signals); the supervisor registers its handlers on it.
-  Supervisor(module::Module& self, SupervisorConfig cfg);
+  // extra signals); the supervisor registers its handlers on it. Both
+  // `self` and `processes` must outlive the supervisor.
+  Supervisor(module::Module& self, SupervisorConfig cfg, Processes& processes);
   ~Supervisor();  // shutdown()
   Supervisor(const Supervisor&) = delete;
   Supervisor& operator=(const Supervisor&) = delete;
 
+  // Reports to systemd through n (which must outlive the supervisor):
+  // STATUS= on every phase change, WATCHDOG=1 every ping interval from the
+  // loop (a hung loop stops pinging), READY=1 at the end of start(),
+  // STOPPING=1 when shutdown() begins. Call before start().
+  void notify_systemd(SystemdNotifier& n);
   // Starts the modules marked start: true.
   void start();
   // Terminates every running module (SIGTERM, SIGKILL after term_grace) and
   // reaps them. Idempotent.
   void shutdown();
-  // Called after every phase change (for sd_notify STATUS=).
-  void on_change(std::function<void()> fn) { on_change_ = std::move(fn); }
   // "2/3 modules running"
   std::string summary() const;
 
@@ -60,7 +67,7 @@ class Supervisor {
     Phase phase = Phase::Down;
     module::State command = module::State::Run;  // what CM_CMD_STATE last asked for
     pid_t pid = 0;
-    Clock::time_point started{}, last_announce{}, kill_at{}, next_start{};
+    module::TimePoint started{}, last_announce{}, kill_at{}, next_start{};
     bool killed = false;  // SIGKILL sent
     int restarts = 0;
     int exit_status = -1;
@@ -77,11 +84,13 @@ class Supervisor {
   void on_command(const common::cmd_state_t& m);
   Proc* find(const std::string& name);
   Proc* find(pid_t pid);
+  module::TimePoint now() { return self_.timers().now(); }
 
   module::Module& self_;
   SupervisorConfig cfg_;
+  Processes& processes_;
+  SystemdNotifier* notifier_ = nullptr;
   std::vector<Proc> procs_;
-  std::function<void()> on_change_;
   std::unique_ptr<module::Subscription<common::data_state_t>> state_sub_;
   std::unique_ptr<module::Subscription<common::cmd_state_t>> cmd_sub_;
   bool shut_down_ = false;
