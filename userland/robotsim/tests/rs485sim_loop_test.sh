@@ -30,20 +30,55 @@ for _ in $(seq 50); do [ -S "$dir/ctl.sock" ] && break; sleep 0.1; done
   --rs485-control "$dir/ctl.sock" --fast --duration 20 --print > "$dir/print.log"
 show() { "$rs485_sim" --control "$dir/ctl.sock" --send "show $1"; }
 
+# Every check compares whole fields at their positions in the boards' show
+# lines ("ok ticks L R rate ...", "ok srf_cm V0..V7 ir_2mm ...", "ok ids ...
+# visible ID:DEG/Q ..."), not a substring anywhere in them.
 last=$(grep '^t=20.0 ' "$dir/print.log") || fail "no t=20.0 line in: $(cat "$dir/print.log")"
-ticks=$(sed -n 's/.*ticks=\([0-9-]*\),\([0-9-]*\).*/\1 \2/p' <<< "$last")
+ticks=$(sed -n 's/.* ticks=\([0-9-]*\),\([0-9-]*\)$/\1 \2/p' <<< "$last")
+[ -n "$ticks" ] || fail "no ticks=L,R at the end of: $last"
 so1=$(show a:so1@0x20)
-[[ "$so1" == "ok ticks $ticks "* ]] || fail "so1 holds '$so1', robot-sim printed ticks $ticks"
+read -ra w <<< "$so1"
+[ "${w[0]} ${w[1]}" = "ok ticks" ] && [ "${w[4]}" = rate ] || fail "so1 show line not 'ok ticks L R rate ...': $so1"
+[ "${w[2]} ${w[3]}" = "$ticks" ] || fail "so1 holds ticks '${w[2]} ${w[3]}', robot-sim printed '$ticks'"
 left=${ticks% *}
 [ "$left" -gt 20000 ] || fail "only $left ticks after 20 s of driving"
 
-srf=$(sed -n '/^t=20.0 /{n;p}' "$dir/print.log" | sed 's/^ *srf_m //')
+# robot.yaml: SRF 0..7 on the front SD1 (0x10), 8..15 on the rear one (0x11);
+# robot-sim prints metres with 2 decimals or "-" (no echo), a board holds
+# centimetres or "none".
+srf=$(sed -n '/^t=20.0 /{n;p}' "$dir/print.log")
 read -ra m <<< "$srf"
-front=$(show a:sd1@0x10)
-for i in 1 2 3; do   # the board holds centimetres; robot-sim printed metres (2 decimals)
-  cm=$(awk -v v="${m[$i]}" 'BEGIN { printf "%d", v * 100 + 0.5 }')
-  [[ " $front " == *" srf_cm "*" $cm "* ]] || fail "front SD1 '$front' lacks SRF $i = $cm cm"
-done
+[ "${m[0]}" = srf_m ] && [ "${#m[@]}" -eq 17 ] || fail "not 'srf_m' and 16 ranges: $srf"
+m=("${m[@]:1}")
+check_sd1() {	# check_sd1 DEVICE FIRST: its 8 srf_cm fields against m[FIRST..FIRST+7]
+	local dev=$1 first=$2 line i want
+	line=$(show "$dev")
+	read -ra w <<< "$line"
+	[ "${w[0]} ${w[1]}" = "ok srf_cm" ] && [ "${w[10]}" = ir_2mm ] ||
+		fail "$dev show line not 'ok srf_cm V0..V7 ir_2mm ...': $line"
+	for i in 0 1 2 3 4 5 6 7; do
+		want=none
+		[ "${m[$((first + i))]}" = - ] ||
+			want=$(awk -v v="${m[$((first + i))]}" 'BEGIN { printf "%d", v * 100 + (v < 0 ? -0.5 : 0.5) }')
+		[ "${w[$((i + 2))]}" = "$want" ] ||
+			fail "$dev SRF $i holds '${w[$((i + 2))]}', robot-sim printed ${m[$((first + i))]} m: $line"
+	done
+	echo "$line"
+}
+front=$(check_sd1 a:sd1@0x10 0)
+rear=$(check_sd1 a:sd1@0x11 8)
+seen=0
+for v in "${m[@]}"; do [ "$v" = - ] || seen=$((seen + 1)); done
+[ "$seen" -gt 0 ] || fail "no SRF saw anything: $srf"
+
+# Beacons: robot-sim prints "ID@DEG.DDdeg(qQ)", the SBS1 holds "ID:DEG/Q"
+# (DEG as %g). The visible sets are equal.
+beacons=$(sed -n '/^t=20.0 /,/^  beacons/{s/^  beacons//p}' "$dir/print.log")
+want=$(tr ' ' '\n' <<< "$beacons" | sed -n 's/^\([0-9]*\)@\([-0-9.]*\)deg(q\([0-9]*\))$/\1 \2 \3/p' |
+	awk '{ printf "%d:%g/%d\n", $1, $2, $3 }' | sort)
+[ -n "$want" ] || fail "robot-sim saw no beacon at t=20.0: '$beacons'"
 sbs1=$(show b:sbs1@0x30)
-[[ "$sbs1" == *"visible "*":"* ]] || fail "no beacon visible on the SBS1: $sbs1"
-echo "ok: so1 '$so1'; sd1 '$front'; sbs1 '$sbs1'"
+[[ "$sbs1" == "ok ids"*" visible "* ]] || fail "sbs1 show line not 'ok ids ... visible ...': $sbs1"
+got=$(tr ' ' '\n' <<< "${sbs1#* visible }" | sort)
+[ "$got" = "$want" ] || fail "SBS1 holds '$(echo $got)', robot-sim saw '$(echo $want)'"
+echo "ok: so1 '$so1'; sd1 '$front' / '$rear'; sbs1 '$sbs1'"

@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <memory>
 #include <thread>
 
 #include "advee/rs485/fake_transport.hpp"
+#include "advee/testing/thread_state.hpp"
 
 namespace advee::rs485 {
 namespace {
@@ -62,8 +64,12 @@ TEST(Rs485Events, ResetWaitsForARunningHandler) {
       {});
   std::thread producer([&] { d.dispatch({}); });
   while (!in_handler) std::this_thread::yield();
+  // Release the handler only once reset() is blocked waiting for it, so
+  // that the wait is what is tested.
+  const pid_t main_tid = advee::testing::current_tid();
+  bool reset_blocked = false;
   std::thread releaser([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    reset_blocked = advee::testing::wait_until_asleep(main_tid);
     release = true;
   });
   s.reset();
@@ -71,16 +77,27 @@ TEST(Rs485Events, ResetWaitsForARunningHandler) {
   EXPECT_TRUE(finished);
   producer.join();
   releaser.join();
+  EXPECT_TRUE(reset_blocked);
 }
 
 TEST(Rs485Events, SubscriptionOutlivingTheDispatcherIsHarmless) {
+  // The handlers hold this token: whoever keeps them alive shows in its count.
+  auto token = std::make_shared<int>(0);
+  bool closed_called = false;
   Subscription s;
   {
     EventDispatcher d;
-    s = d.subscribe([](const Frame&) {}, {});
+    s = d.subscribe([token](const Frame&) {}, [token, &closed_called](std::error_code) { closed_called = true; });
+    ASSERT_TRUE(s);
+    EXPECT_EQ(token.use_count(), 3);
   }
-  s.reset();
-  SUCCEED();
+  // The dispatcher took its subscribers with it; the subscription does not
+  // keep them (nor the dispatcher's state) alive.
+  EXPECT_EQ(token.use_count(), 1);
+  EXPECT_TRUE(s);
+  s.reset();  // must not touch the freed dispatcher (ASan would report it)
+  EXPECT_FALSE(s);
+  EXPECT_FALSE(closed_called);
 }
 
 TEST(Rs485FakeTransport, RecordsRequestsAndAnswersBroadcastWithoutResponder) {

@@ -136,7 +136,7 @@ kill -TERM "$WEB_PID"
 wait "$WEB_PID"
 rc=$?
 PIDS=${PIDS/ $WEB_PID/}
-if [ "$rc" = 0 ] && grep -q 'stopped: [0-9]* messages' "$OUT/advee-web.log"; then
+if [ "$rc" = 0 ] && grep -Eqx 'advee-web: stopped: [0-9]+ messages, [0-9]+ dropped for slow clients' "$OUT/advee-web.log"; then
 	row "SIGTERM: advee-web exits 0" ok
 else
 	row "SIGTERM: advee-web exits 0" fail "exit $rc"
