@@ -64,12 +64,16 @@ int rs485_req_submit(struct rs485_bus *bus, struct rs485_req *req)
 }
 
 /*
- * Sleep until the worker completed @req. Returns 0 (result in @req), -EINTR
- * on a signal, -EIO when the discipline goes away: the tty core sets
- * TTY_LDISC_CHANGING and wakes sleepers before it detaches the discipline
- * or hangs up, and cannot proceed while they stay inside it. A request still
- * queued is withdrawn; one on the bus is left to the worker (it finishes the
- * frame and consumes a late response, see the top of this file).
+ * Sleep until the worker completed @req. Returns 0 (result in @req), -EIO
+ * when the discipline goes away (the tty core sets TTY_LDISC_CHANGING and
+ * wakes sleepers before it detaches the discipline or hangs up, and cannot
+ * proceed while they stay inside it), and on a signal:
+ *   -ERESTARTSYS while the request is still queued: it is withdrawn, nothing
+ *   went out, so the call may be restarted (SA_RESTART, a stop signal, ptrace
+ *   attach, the freezer) without a second execution;
+ *   -EINTR once the worker has taken it: it is on the bus, is left to the
+ *   worker (which finishes the frame and consumes a late response, see the
+ *   top of this file), and must never be sent again by a restarted call.
  */
 int rs485_req_wait(struct rs485_bus *bus, struct rs485_req *req)
 {
@@ -88,6 +92,8 @@ int rs485_req_wait(struct rs485_bus *bus, struct rs485_req *req)
 			ret = -EIO;	/* the discipline is being detached */
 		if (bus->cur == req) {
 			req->abandoned = true;
+			if (ret == -ERESTARTSYS)
+				ret = -EINTR;
 		} else {
 			list_del_init(&req->node);
 			bus->queued--;
