@@ -56,6 +56,7 @@ struct rs485_rx {
 	 */
 	bool lenient;			/* under bus->lock */
 	unsigned int pos;		/* bytes of frame.buf filled */
+	u32 attempt;			/* bus->attempt when the frame in progress began */
 	u8 buf[RS485_MAX_FRAME];	/* ADDR INSTR FLAGS LEN DATA */
 	/*
 	 * The characters of the frame in progress as received (with their
@@ -112,10 +113,24 @@ struct rs485_bus {
 	unsigned int queued;
 	struct rs485_req *cur;		/* on the bus now */
 	enum rs485_resp_state resp_state;
+	/*
+	 * Number of the attempt that resp_state is about: a frame that began
+	 * during an earlier attempt and is cut short or fails its CRC later
+	 * says nothing about the current one.
+	 */
+	u32 attempt;
 	wait_queue_head_t resp_wait;	/* the worker: response or dead */
 	wait_queue_head_t done_wait;	/* callers: their request done */
 	bool dead;			/* detaching or hung up: no new work */
-	ktime_t line_free;		/* earliest start of the next request */
+	/*
+	 * The line is idle for gap_chars before every request, retries
+	 * included: line_free is the end of the last request sent plus the gap
+	 * (worker only), rx_last when the last character was received (under
+	 * lock; receive_buf runs after the character ended, so the gap counted
+	 * from it is never short).
+	 */
+	ktime_t line_free;
+	ktime_t rx_last;
 
 	/*
 	 * RS485_CFG_ECHO: the frame being sent, which the first characters
@@ -161,8 +176,8 @@ int rs485_req_wait(struct rs485_bus *bus, struct rs485_req *req);
 void rs485_xact_work(struct work_struct *work);
 void rs485_xact_kill(struct rs485_bus *bus);
 bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned int len);
-void rs485_rx_corrupt_from(struct rs485_bus *bus, u8 addr);
-void rs485_rx_addr_seen(struct rs485_bus *bus, u8 addr);
+void rs485_rx_corrupt_from(struct rs485_bus *bus, u8 addr, u32 attempt);
+u32 rs485_rx_addr_seen(struct rs485_bus *bus, u8 addr);
 
 /* rs485-user.c */
 void rs485_event_queue(struct rs485_bus *bus, const u8 *frame, unsigned int len);

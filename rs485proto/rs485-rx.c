@@ -9,7 +9,11 @@
  * frame, whatever state the machine is in: that is the resynchronisation
  * rule of the protocol, and it means that garbage can cost at most the frame
  * it hits. Overruns, framing errors and breaks abort the frame being
- * received, because a character of it may be missing or wrong.
+ * received, because a character of it may be missing or wrong. Every way a
+ * frame can end without being delivered (bad CRC, cut short by an address
+ * character, an overrun, a framing error or a break) is reported to the
+ * transaction (rs485_rx_corrupt_from()): if it was the awaited response, the
+ * node has executed the request and the retry must be a RESEND.
  *
  * Sending the address character (mark parity) inverts the flags of what
  * arrives meanwhile on a full-duplex link. From just before that switch
@@ -50,6 +54,16 @@ static void rs485_rx_deliver(struct rs485_bus *bus)
 		rs485_event_queue(bus, frame, len);
 }
 
+/* The frame in progress ends without a valid frame; @counter says how. */
+static void rs485_rx_abort(struct rs485_bus *bus, u64 *counter)
+{
+	struct rs485_rx *rx = &bus->rx;
+
+	rs485_rx_count(bus, counter);
+	rs485_rx_corrupt_from(bus, rx->buf[0], rx->attempt);
+	rs485_rx_reset(bus);
+}
+
 static void rs485_rx_replay(struct rs485_bus *bus);
 
 static void rs485_rx_start(struct rs485_bus *bus, u8 addr)
@@ -60,13 +74,13 @@ static void rs485_rx_start(struct rs485_bus *bus, u8 addr)
 	if (rx->state != RS485_RX_IDLE && rx->guessed)
 		rs485_rx_replay(bus);
 	if (rx->state != RS485_RX_IDLE)
-		rs485_rx_count(bus, &bus->stats.rx_truncated);
+		rs485_rx_abort(bus, &bus->stats.rx_truncated);
 	rx->buf[0] = addr;
 	rx->pos = 1;
 	rx->state = RS485_RX_HEADER;
 	rx->guessed = false;
 	rx->nraw = 0;
-	rs485_rx_addr_seen(bus, addr);
+	rx->attempt = rs485_rx_addr_seen(bus, addr);
 }
 
 static void rs485_rx_char(struct rs485_bus *bus, u8 c, bool parity, bool lenient);
@@ -97,8 +111,7 @@ static void rs485_rx_crc(struct rs485_bus *bus, u8 c)
 		rs485_rx_replay(bus);
 		return;
 	}
-	rs485_rx_count(bus, &bus->stats.rx_crc_errors);
-	rs485_rx_corrupt_from(bus, rx->buf[0]);
+	rs485_rx_abort(bus, &bus->stats.rx_crc_errors);
 }
 
 static void rs485_rx_data(struct rs485_bus *bus, u8 c)
@@ -188,6 +201,7 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 	 */
 	spin_lock_irqsave(&bus->lock, flags);
 	bus->stats.rx_bytes += count;
+	bus->rx_last = ktime_get();
 	lenient = bus->rx.lenient;
 	spin_unlock_irqrestore(&bus->lock, flags);
 
@@ -204,14 +218,12 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 			/* An extra NUL: a character was lost before this point. */
 			rs485_rx_count(bus, &bus->stats.rx_overruns);
 			if (bus->rx.state != RS485_RX_IDLE)
-				rs485_rx_count(bus, &bus->stats.rx_truncated);
-			rs485_rx_reset(bus);
+				rs485_rx_abort(bus, &bus->stats.rx_truncated);
 			break;
 		default:	/* TTY_FRAME, TTY_BREAK */
 			rs485_rx_count(bus, &bus->stats.rx_framing);
 			if (bus->rx.state != RS485_RX_IDLE)
-				rs485_rx_count(bus, &bus->stats.rx_truncated);
-			rs485_rx_reset(bus);
+				rs485_rx_abort(bus, &bus->stats.rx_truncated);
 			break;
 		}
 	}

@@ -34,8 +34,13 @@ static void rs485_termios_bus(struct rs485_bus *bus, struct ktermios *t, bool ma
 	t->c_cflag |= CS8 | PARENB | CMSPAR | CREAD | CLOCAL;
 	if (mark)
 		t->c_cflag |= PARODD;
-	t->c_iflag &= ~(IGNPAR | PARMRK | ISTRIP | IXON | IXOFF | IXANY | IGNBRK | BRKINT);
-	t->c_iflag |= INPCK;
+	t->c_iflag &= ~(IGNPAR | PARMRK | ISTRIP | IXON | IXOFF | IXANY | IGNBRK);
+	/*
+	 * BRKINT: serial drivers flag a break TTY_BREAK only with it (or
+	 * PARMRK), else it is a NUL data character; a break cuts a response
+	 * short. Sending SIGINT on a break is n_tty's job, not this one's.
+	 */
+	t->c_iflag |= INPCK | BRKINT;
 	tty_termios_encode_baud_rate(t, bus->cfg.baud, bus->cfg.baud);
 }
 
@@ -231,14 +236,20 @@ static int rs485_echo_check(struct rs485_bus *bus)
  */
 int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 {
-	s64 gap = ktime_to_ns(ktime_sub(bus->line_free, ktime_get()));
+	u64 gap_ns = bus->cfg.gap_chars * rs485_char_ns(bus);
 	bool echo = bus->cfg.flags & RS485_CFG_ECHO;
 	struct tty_port *port = bus->tty->port;
 	unsigned long flags;
+	ktime_t start;
 	int ret, echo_ret;
 
-	if (gap > 0)
-		rs485_sleep_until(bus, bus->line_free);
+	/* The gap after the last frame on the line, whichever direction. */
+	spin_lock_irqsave(&bus->lock, flags);
+	start = ktime_add_ns(bus->rx_last, gap_ns);
+	spin_unlock_irqrestore(&bus->lock, flags);
+	if (ktime_before(start, bus->line_free))
+		start = bus->line_free;
+	rs485_sleep_until(bus, start);
 	if (echo)
 		rs485_echo_expect(bus, buf, len);
 	rs485_rx_lenient(bus, true);
@@ -265,6 +276,9 @@ int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 		if (!ret)
 			ret = echo_ret;
 	}
+
+	/* This frame has left the line (or failed): the next one waits the gap. */
+	bus->line_free = ktime_add_ns(ktime_get(), gap_ns);
 
 	spin_lock_irqsave(&bus->lock, flags);
 	bus->stats.tx_frames++;

@@ -231,6 +231,7 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 
 		spin_lock_irqsave(&bus->lock, flags);
 		bus->resp_state = req->expect_resp ? RS485_RESP_WAIT : RS485_RESP_NONE;
+		bus->attempt++;
 		spin_unlock_irqrestore(&bus->lock, flags);
 
 		req->attempts++;
@@ -244,11 +245,9 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 			if (ret == -ECOMM && !READ_ONCE(bus->dead)) {
 				/*
 				 * The node got a garbled frame (or none): no
-				 * response to wait for. Repeat the request once
-				 * the line has been idle for the gap.
+				 * response to wait for. Repeat the request (after
+				 * the gap, like every request).
 				 */
-				bus->line_free = ktime_add_ns(ktime_get(), bus->cfg.gap_chars *
-							      rs485_char_ns(bus));
 				req->status = RS485_COLLISION;
 				continue;
 			}
@@ -269,12 +268,22 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 			req->status = rs485_resp_status(&req->resp);
 			return;
 		case RS485_RESP_CORRUPT:
-			/* The node answered, so it executed: ask for the answer again. */
+		case RS485_RESP_STARTED:
+			/*
+			 * The node's address character arrived, so it executed:
+			 * its response failed the CRC, was cut short (address
+			 * character, overrun, framing error, break) or stopped.
+			 * Ask for the answer again, in this and every later
+			 * retry of the request.
+			 */
 			resend = true;
 			req->status = RS485_BADCRC;
 			break;
 		default:
-			/* After a timeout the request is repeated as it was (sticky RESEND). */
+			/*
+			 * Nothing of a response: the request is repeated as it
+			 * was, unless an earlier attempt set RESEND (sticky).
+			 */
 			rs485_count(bus, &bus->stats.timeouts);
 			req->status = RS485_TIMEOUT;
 			break;
@@ -303,8 +312,6 @@ void rs485_xact_work(struct work_struct *work)
 
 		mutex_lock(&bus->line_mutex);
 		rs485_run(bus, req, buf);
-		/* The next frame may start after the inter-frame gap. */
-		bus->line_free = ktime_add_ns(ktime_get(), bus->cfg.gap_chars * rs485_char_ns(bus));
 		mutex_unlock(&bus->line_mutex);
 
 		spin_lock_irqsave(&bus->lock, flags);
@@ -375,14 +382,17 @@ bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned in
 	return taken;
 }
 
-/* A frame with a bad CRC from @addr: if that node is being waited for, retry. */
-void rs485_rx_corrupt_from(struct rs485_bus *bus, u8 addr)
+/*
+ * A frame from @addr that began during @attempt ended without being valid
+ * (bad CRC, cut short): if it is the response being waited for, retry now.
+ */
+void rs485_rx_corrupt_from(struct rs485_bus *bus, u8 addr, u32 attempt)
 {
 	unsigned long flags;
 	bool wake = false;
 
 	spin_lock_irqsave(&bus->lock, flags);
-	if (bus->cur && bus->cur->frame.addr == addr &&
+	if (bus->cur && bus->cur->frame.addr == addr && attempt == bus->attempt &&
 	    (bus->resp_state == RS485_RESP_WAIT || bus->resp_state == RS485_RESP_STARTED)) {
 		bus->resp_state = RS485_RESP_CORRUPT;
 		wake = true;
@@ -392,13 +402,19 @@ void rs485_rx_corrupt_from(struct rs485_bus *bus, u8 addr)
 		wake_up_all(&bus->resp_wait);
 }
 
-/* Address character seen: the awaited node has started to answer. */
-void rs485_rx_addr_seen(struct rs485_bus *bus, u8 addr)
+/*
+ * Address character seen: if it is the awaited node's, it has started to
+ * answer. Returns the attempt the frame that begins here belongs to.
+ */
+u32 rs485_rx_addr_seen(struct rs485_bus *bus, u8 addr)
 {
 	unsigned long flags;
+	u32 attempt;
 
 	spin_lock_irqsave(&bus->lock, flags);
 	if (bus->cur && bus->cur->frame.addr == addr && bus->resp_state == RS485_RESP_WAIT)
 		bus->resp_state = RS485_RESP_STARTED;
+	attempt = bus->attempt;
 	spin_unlock_irqrestore(&bus->lock, flags);
+	return attempt;
 }

@@ -68,6 +68,30 @@ static inline int wire_set_echo(int wfd, int on)
 	return ioctl(wfd, TS7800_SIM_SET_ECHO, &v);
 }
 
+/* Line log (TS7800_SIM_SET_LOG): 1 starts it empty, 0 stops it. */
+static inline int wire_set_log(int wfd, int on)
+{
+	uint32_t v = on;
+
+	return ioctl(wfd, TS7800_SIM_SET_LOG, &v);
+}
+
+/* Take up to @max logged characters; returns how many, or -1. */
+static inline int wire_read_log(int wfd, struct ts7800_sim_line_event *ev, unsigned int max,
+				unsigned int *dropped)
+{
+	struct ts7800_sim_log_read rd = {
+		.events = (uintptr_t)ev,
+		.max = max,
+	};
+
+	if (ioctl(wfd, TS7800_SIM_READ_LOG, &rd))
+		return -1;
+	if (dropped)
+		*dropped += rd.dropped;
+	return rd.count;
+}
+
 /* Write @val to the simulator's debugfs file @file of port @port (-1: top). */
 static inline int debugfs_write(int port, const char *file, long val)
 {

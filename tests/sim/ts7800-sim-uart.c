@@ -93,6 +93,20 @@ static bool sim_apply_fault(struct sim_uart *u, struct sim_fault *f, u16 *w)
 	return true;
 }
 
+/* TS7800_SIM_SET_LOG: note a character that ended at @t (sim->lock held). */
+void sim_uart_log(struct sim_uart *u, u16 w, ktime_t t, u8 dir)
+{
+	struct ts7800_sim_line_event ev = {
+		.end_ns = ktime_to_ns(t),
+		.char_ns = u->stats.char_ns,
+		.word = w,
+		.dir = dir,
+	};
+
+	if (u->log_on && !kfifo_put(&u->log, ev))
+		u->log_dropped++;
+}
+
 /* A character (or break) arrived completely at u's receiver at time t. */
 static void sim_rx_complete(struct sim_uart *u, u16 w, ktime_t t)
 {
@@ -100,6 +114,7 @@ static void sim_rx_complete(struct sim_uart *u, u16 w, ktime_t t)
 
 	if (!sim_apply_fault(u, &u->rx_fault, &w))
 		return;
+	sim_uart_log(u, w, t, TS7800_SIM_LOG_RX);
 	if (w & TS7800_SIM_WORD_FRAME)
 		u->stats.framing_errors++;
 	entry = (w & TS7800_SIM_WORD_BREAK) ? SIM_RX_BREAK : (w & TS7800_SIM_WORD_CHAR);
@@ -124,6 +139,7 @@ static void sim_tx_deliver(struct sim_uart *u, u16 w, ktime_t t)
 
 	if (!sim_apply_fault(u, &u->tx_fault, &w))
 		return;
+	sim_uart_log(u, w, t, TS7800_SIM_LOG_TX);
 	u->stats.to_wire++;
 	u->stats.to_wire_last_ns = ktime_to_ns(t);
 	if (!kfifo_put(&u->line_out, w))

@@ -15,6 +15,7 @@
 #include "ts7800-sim.h"
 
 #define WIRE_BATCH	64	/* words per locked step */
+#define LOG_BATCH	32	/* line log events per locked step */
 
 static struct sim_uart *wire_uart(struct file *file)
 {
@@ -133,6 +134,70 @@ static __poll_t wire_poll(struct file *file, poll_table *wait)
 	return mask;
 }
 
+/* TS7800_SIM_SET_LOG: the buffer is allocated once, for the device's life. */
+static int wire_set_log(struct sim_uart *u, u32 on)
+{
+	struct ts7800_sim *sim = u->sim;
+	struct ts7800_sim_line_event *buf = NULL;
+	unsigned long flags;
+
+	if (on > 1)
+		return -EINVAL;
+	if (on && !kfifo_initialized(&u->log)) {
+		buf = devm_kcalloc(sim->dev, TS7800_SIM_LOG_EVENTS, sizeof(*buf), GFP_KERNEL);
+		if (!buf)
+			return -ENOMEM;
+	}
+	spin_lock_irqsave(&sim->lock, flags);
+	if (buf && !kfifo_initialized(&u->log)) {
+		kfifo_init(&u->log, buf, TS7800_SIM_LOG_EVENTS * sizeof(*buf));
+		buf = NULL;
+	}
+	if (on) {
+		kfifo_reset(&u->log);
+		u->log_dropped = 0;
+	}
+	u->log_on = on;
+	spin_unlock_irqrestore(&sim->lock, flags);
+	if (buf)
+		devm_kfree(sim->dev, buf);	/* another caller was first */
+	return 0;
+}
+
+static int wire_read_log(struct sim_uart *u, void __user *arg)
+{
+	struct ts7800_sim *sim = u->sim;
+	struct ts7800_sim_line_event ev[LOG_BATCH];
+	struct ts7800_sim_line_event __user *dst;
+	struct ts7800_sim_log_read rd;
+	unsigned long flags;
+	unsigned int n;
+
+	if (copy_from_user(&rd, arg, sizeof(rd)))
+		return -EFAULT;
+	if (rd.pad)
+		return -EINVAL;
+	dst = u64_to_user_ptr(rd.events);
+	rd.count = 0;
+	spin_lock_irqsave(&sim->lock, flags);
+	rd.dropped = u->log_dropped;
+	u->log_dropped = 0;
+	spin_unlock_irqrestore(&sim->lock, flags);
+	while (rd.count < rd.max) {
+		spin_lock_irqsave(&sim->lock, flags);
+		n = kfifo_initialized(&u->log) ?
+		    kfifo_out(&u->log, ev, min_t(u32, rd.max - rd.count, LOG_BATCH)) : 0;
+		spin_unlock_irqrestore(&sim->lock, flags);
+		if (!n)
+			break;
+		/* Events taken but not copied are lost, like a short read(). */
+		if (copy_to_user(dst + rd.count, ev, n * sizeof(ev[0])))
+			return -EFAULT;
+		rd.count += n;
+	}
+	return copy_to_user(arg, &rd, sizeof(rd)) ? -EFAULT : 0;
+}
+
 static long wire_ioctl(struct file *file, unsigned int cmd, unsigned long arg)
 {
 	struct sim_uart *u = wire_uart(file);
@@ -173,6 +238,12 @@ static long wire_ioctl(struct file *file, unsigned int cmd, unsigned long arg)
 		u->echo = level;
 		spin_unlock_irqrestore(&sim->lock, flags);
 		return 0;
+	case TS7800_SIM_SET_LOG:
+		if (get_user(level, (u32 __user *)arg))
+			return -EFAULT;
+		return wire_set_log(u, level);
+	case TS7800_SIM_READ_LOG:
+		return wire_read_log(u, (void __user *)arg);
 	default:
 		return -ENOTTY;
 	}

@@ -91,6 +91,10 @@ struct sim_uart {
 
 	int peer;		/* cross-connected port, or -1 */
 	bool echo;		/* receives what it transmits (TS7800_SIM_SET_ECHO) */
+	/* TS7800_SIM_SET_LOG: line log, buffer allocated on first use (devm) */
+	bool log_on;
+	u32 log_dropped;
+	DECLARE_KFIFO_PTR(log, struct ts7800_sim_line_event);
 	struct sim_fault rx_fault;
 	struct sim_fault tx_fault;
 	struct ts7800_sim_wire_stats stats;
@@ -201,6 +205,7 @@ int sim_reg_read(void *context, unsigned int reg, unsigned int *val);
 int sim_reg_write(void *context, unsigned int reg, unsigned int val);
 void sim_uart_rx_kick(struct sim_uart *u);
 void sim_uart_tx_kick(struct sim_uart *u);
+void sim_uart_log(struct sim_uart *u, u16 w, ktime_t t, u8 dir);
 
 /* ts7800-sim-wire.c */
 int sim_wire_register(struct sim_uart *u);

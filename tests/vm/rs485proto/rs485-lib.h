@@ -13,6 +13,7 @@
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -41,7 +42,24 @@ enum {
 	I_CORRUPT = 0x08,	/* every answer has a bad CRC */
 	I_COUNT = 0x09,		/* ACK, data = u32 count of executions of this instr */
 	I_SLOW = 0x0a,		/* ACK after 100 ms, data = request data */
+	/*
+	 * The first answer (the execution) is cut short after ADDR INSTR FLAGS
+	 * LEN and 2 of its 4 data bytes; RESEND gets the whole answer:
+	 */
+	I_CUT_SILENT = 0x0b,	/* ...and the slave stops sending */
+	I_CUT_ADDR = 0x0c,	/* ...by an address character (OTHER_ADDR), then silence */
+	I_CUT_BREAK = 0x0d,	/* ...by a break */
+	/*
+	 * The first answer has 40 data bytes and is sent while the simulated
+	 * CPU does not serve interrupts, so the UART's RX FIFO overruns.
+	 */
+	I_CUT_OVERRUN = 0x0e,
+	I_DELAY = 0x0f,		/* ACK after slave.delay_us, data = request data */
 };
+
+#define CUT_DATA	4	/* data bytes of the whole answer of I_CUT_* */
+#define CUT_SENT	6	/* characters of it sent before the cut */
+#define OVERRUN_DATA	40
 
 static inline int sim_load(void)
 {
@@ -126,6 +144,9 @@ struct slave {
 	uint8_t last_resp[RS485_MAX_FRAME];	/* for RESEND */
 	size_t last_resp_len;
 	pthread_mutex_t send_lock;	/* one frame at a time on the wire */
+	atomic_uint mute_resends;	/* leave this many RESENDs unanswered */
+	atomic_uint delay_us;		/* I_DELAY */
+	atomic_uint overrun_missed;	/* I_CUT_OVERRUN: no overrun within 2 s */
 	/* unsolicited events (event_period_us > 0): a second thread */
 	unsigned int event_period_us;
 	atomic_uint events_sent;
@@ -163,6 +184,39 @@ static inline void *slave_events_main(void *arg)
 	return NULL;
 }
 
+/* The first CUT_SENT characters of frame @f, then @end (a word, or none if 0). */
+static inline void slave_send_cut(struct slave *s, const uint8_t *f, uint16_t end)
+{
+	uint16_t w[CUT_SENT + 1];
+
+	frame_words(f, CUT_SENT, 0, w);	/* w[CUT_SENT] (a CRC) is replaced: */
+	w[CUT_SENT] = end;
+	pthread_mutex_lock(&s->send_lock);
+	wire_write_all(s->wfd, w, end ? CUT_SENT + 1 : CUT_SENT);
+	pthread_mutex_unlock(&s->send_lock);
+}
+
+/* Send @f (n bytes) while the CPU ignores interrupts, until the RX FIFO overruns. */
+static inline void slave_send_overrun(struct slave *s, const uint8_t *f, size_t n)
+{
+	struct ts7800_sim_wire_stats st;
+	uint64_t before;
+	double end;
+
+	wire_stats(s->wfd, &st);
+	before = st.rx_overruns;
+	debugfs_write(-1, "irq_hold", 1);
+	slave_send(s, f, n, 0);
+	end = now_s() + 2;
+	do {
+		usleep(1000);
+		wire_stats(s->wfd, &st);
+	} while (st.rx_overruns == before && now_s() < end);
+	debugfs_write(-1, "irq_hold", 0);
+	if (st.rx_overruns == before)
+		s->overrun_missed++;
+}
+
 static inline void slave_answer(struct slave *s, const uint8_t *req)
 {
 	uint8_t r[RS485_MAX_FRAME];
@@ -179,6 +233,10 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		return;
 	if (req[2] & RS485_REQ_RESEND) {
 		s->resends++;
+		if (s->mute_resends) {
+			s->mute_resends--;
+			return;
+		}
 		if (s->last_resp_len)
 			slave_send(s, s->last_resp, s->last_resp_len,
 				   instr == I_CORRUPT ? 0x55 : 0);
@@ -193,6 +251,10 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 	switch (instr) {
 	case I_SLOW:
 		usleep(100000);
+		/* fall through */
+	case I_DELAY:
+		if (instr == I_DELAY)
+			usleep(s->delay_us);
 		/* fall through */
 	case I_ECHO:
 	case I_EVENT_FIRST:
@@ -226,6 +288,16 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		memcpy(r + 4, &cnt, 4);
 		len = 4;
 		break;
+	case I_CUT_SILENT:
+	case I_CUT_ADDR:
+	case I_CUT_BREAK:
+		len = CUT_DATA;
+		memset(r + 4, instr, len);
+		break;
+	case I_CUT_OVERRUN:
+		len = OVERRUN_DATA;
+		memset(r + 4, instr, len);
+		break;
 	default:
 		r[2] = RS485_RESP_UNKINSTR;
 		break;
@@ -242,7 +314,23 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 	}
 	memcpy(s->last_resp, r, 4 + len);
 	s->last_resp_len = 4 + len;
-	slave_send(s, r, 4 + len, xor);
+	switch (instr) {
+	case I_CUT_SILENT:
+		slave_send_cut(s, r, 0);
+		break;
+	case I_CUT_ADDR:
+		slave_send_cut(s, r, OTHER_ADDR | TS7800_SIM_WORD_BIT9);
+		break;
+	case I_CUT_BREAK:
+		slave_send_cut(s, r, TS7800_SIM_WORD_BREAK);
+		break;
+	case I_CUT_OVERRUN:
+		slave_send_overrun(s, r, 4 + len);
+		break;
+	default:
+		slave_send(s, r, 4 + len, xor);
+		break;
+	}
 }
 
 static inline void *slave_main(void *arg)
@@ -394,6 +482,89 @@ static inline void event_reader_stop(struct event_reader *r)
 {
 	r->stop = 1;
 	pthread_join(r->thread, NULL);
+}
+
+/*
+ * Idle line before every request, from the wire's line log: a request starts
+ * with the start bit of its address character (a transmitted character with
+ * the 9th bit); the line was idle since the end of the last character before
+ * it, in either direction. Requests with no received character since the
+ * previous request are repeats after a silence (a timeout, or no response
+ * expected): their idle time runs from the end of that request.
+ */
+#define LINE_SAMPLES	4096
+
+struct line_scan {
+	int wfd;		/* a wire fd of the bus's UART, log on */
+	/* state between reads */
+	int64_t prev_end;	/* end of the last character, either direction */
+	int rx_since_req;	/* a character was received since the last request */
+	/* results */
+	unsigned int requests, dropped;
+	unsigned int ngaps, nsilent;
+	int64_t gap_ns[LINE_SAMPLES];		/* idle before a request, after a response */
+	int64_t silent_ns[LINE_SAMPLES];	/* idle before a request, after a request */
+	unsigned int nresp;
+	int64_t resp_ns[LINE_SAMPLES];		/* end of a request to its response's start */
+	uint32_t char_ns;
+};
+
+static inline int line_scan_start(struct line_scan *ls, int wfd)
+{
+	memset(ls, 0, sizeof(*ls));
+	ls->wfd = wfd;
+	ls->prev_end = -1;
+	return wire_set_log(wfd, 1);
+}
+
+/* Consume what the log holds now. */
+static inline void line_scan_read(struct line_scan *ls)
+{
+	struct ts7800_sim_line_event ev[256];
+	int n, i;
+
+	while ((n = wire_read_log(ls->wfd, ev, 256, &ls->dropped)) > 0) {
+		for (i = 0; i < n; i++) {
+			int64_t start = (int64_t)ev[i].end_ns - ev[i].char_ns;
+
+			if (ev[i].dir == TS7800_SIM_LOG_TX && (ev[i].word & TS7800_SIM_WORD_BIT9)) {
+				ls->requests++;
+				ls->char_ns = ev[i].char_ns;
+				if (ls->prev_end >= 0 && ls->rx_since_req && ls->ngaps < LINE_SAMPLES)
+					ls->gap_ns[ls->ngaps++] = start - ls->prev_end;
+				else if (ls->prev_end >= 0 && ls->nsilent < LINE_SAMPLES)
+					ls->silent_ns[ls->nsilent++] = start - ls->prev_end;
+				ls->rx_since_req = 0;
+			} else if (ev[i].dir == TS7800_SIM_LOG_RX) {
+				if (!ls->rx_since_req && ls->requests && ls->nresp < LINE_SAMPLES)
+					ls->resp_ns[ls->nresp++] = start - ls->prev_end;
+				ls->rx_since_req = 1;
+			}
+			ls->prev_end = ev[i].end_ns;
+		}
+		if (n < 256)
+			break;
+	}
+}
+
+static inline int cmp_i64(const void *a, const void *b)
+{
+	int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+
+	return (x > y) - (x < y);
+}
+
+/* Sort @v and report min/median/max in us; returns the minimum (or INT64_MAX). */
+static inline int64_t line_report(const char *what, int64_t *v, unsigned int n)
+{
+	if (!n) {
+		tap_diag("%s: none", what);
+		return INT64_MAX;
+	}
+	qsort(v, n, sizeof(v[0]), cmp_i64);
+	tap_diag("%s: %u, min %.0f us, median %.0f us, max %.0f us", what, n, v[0] / 1e3,
+		 v[n / 2] / 1e3, v[n - 1] / 1e3);
+	return v[0];
 }
 
 /* One transaction; returns the ioctl result, the outcome in x. */

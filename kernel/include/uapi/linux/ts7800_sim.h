@@ -87,4 +87,39 @@ struct ts7800_sim_wire_stats {
  */
 #define TS7800_SIM_SET_ECHO	_IOW(TS7800_SIM_IOC_MAGIC, 4, __u32)
 
+/*
+ * Line log: every character of this wire, in both directions, with the time
+ * its stop bit ended (CLOCK_MONOTONIC): what the UART transmitted (after tx
+ * fault injection, as the line carried it) and what its receiver completed
+ * (after rx fault injection; also a character lost to a full RX FIFO). It
+ * starts at TS7800_SIM_SET_LOG 1 (which empties it) and holds the last
+ * TS7800_SIM_LOG_EVENTS characters not yet read; more are dropped and
+ * counted. Independent of read(), which still returns the words.
+ */
+#define TS7800_SIM_LOG_EVENTS	4096
+#define TS7800_SIM_LOG_TX	0	/* the UART sent it */
+#define TS7800_SIM_LOG_RX	1	/* the UART received it */
+
+struct ts7800_sim_line_event {
+	__u64 end_ns;			/* end of the stop bit */
+	__u32 char_ns;			/* the character's time on the line */
+	__u16 word;			/* TS7800_SIM_WORD_* */
+	__u8 dir;			/* TS7800_SIM_LOG_TX or _RX */
+	__u8 pad;
+};
+
+/* TS7800_SIM_READ_LOG argument: takes up to max events, oldest first. */
+struct ts7800_sim_log_read {
+	__u64 events;			/* user pointer to max struct ts7800_sim_line_event */
+	__u32 max;			/* in */
+	__u32 count;			/* out: events copied */
+	__u32 dropped;			/* out: events lost (log full) since the last read */
+	__u32 pad;
+};
+
+/* 1 = start logging (emptied), 0 = stop. Off by default. */
+#define TS7800_SIM_SET_LOG	_IOW(TS7800_SIM_IOC_MAGIC, 5, __u32)
+/* Non-blocking: copies what the log holds (count may be 0). */
+#define TS7800_SIM_READ_LOG	_IOWR(TS7800_SIM_IOC_MAGIC, 6, struct ts7800_sim_log_read)
+
 #endif /* _UAPI_LINUX_TS7800_SIM_H */

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * resend - a response that starts but is cut short is followed by RESEND,
+ * never by a fresh request (issue 18, item 2; spec "Timing and
+ * transactions"): once the node's address character has arrived the node
+ * has executed the request. The slave cuts its first answer short after 6
+ * characters by silence, by another node's address character, by a break,
+ * or by an overrun of the UART's RX FIFO (the simulated CPU ignores
+ * interrupts meanwhile); the retry must be a RESEND, the instruction runs
+ * once. RESEND, once set, stays set for later retries (also after a timeout
+ * of the RESEND). The last attempt's cut response ends as RS485_BADCRC.
+ * Every request, retries included, follows the previous frame after at
+ * least 2 idle characters (line log of the wire).
+ */
+#include "rs485-lib.h"
+
+#define PORT		0
+#define LONG_US		300000
+
+static struct line_scan ls;
+
+/* One cut-short case: status, attempts, executions and RESENDs as expected. */
+static void cut_case(int fd, struct slave *s, uint8_t instr, const char *how, uint32_t retries,
+		     unsigned int mute, uint32_t want_status, uint32_t want_attempts)
+{
+	unsigned int e0 = s->executions[instr], r0 = s->resends;
+	struct rs485_stats st0, st1;
+	struct rs485_xfer x;
+	int ret;
+
+	s->mute_resends = mute;
+	if (get_stats(fd, &st0))
+		tap_bail("RS485_IOC_GET_STATS");
+	ret = xfer(fd, &x, SLAVE_ADDR, instr, 0, NULL, 0, LONG_US, retries);
+	line_scan_read(&ls);
+	if (get_stats(fd, &st1))
+		tap_bail("RS485_IOC_GET_STATS");
+	/* The cut itself, as the discipline saw it. */
+	if (instr == I_CUT_BREAK && st1.rx_framing == st0.rx_framing)
+		tap_diag("the break did not reach the discipline as a break");
+	if (instr == I_CUT_OVERRUN && st1.rx_overruns == st0.rx_overruns)
+		tap_diag("the overrun did not reach the discipline");
+	tap_ok(ret == 0 && x.status == want_status && x.attempts == want_attempts &&
+	       (instr != I_CUT_BREAK || st1.rx_framing > st0.rx_framing) &&
+	       (instr != I_CUT_OVERRUN || st1.rx_overruns > st0.rx_overruns) &&
+	       s->executions[instr] - e0 == 1 && s->resends - r0 == want_attempts - 1,
+	       "cut by %s%s: status %u (want %u), attempts %u (want %u), executed %u time(s), "
+	       "%u RESEND(s)", how, mute ? " + RESEND unanswered" : "", x.status, want_status,
+	       x.attempts, want_attempts, s->executions[instr] - e0, s->resends - r0);
+	if (want_status == RS485_OK)
+		tap_ok(ret == 0 && x.status == RS485_OK &&
+		       x.resp.len == (instr == I_CUT_OVERRUN ? OVERRUN_DATA : CUT_DATA) &&
+		       x.resp.data[0] == instr, "...and the RESEND's answer is the whole response");
+	s->mute_resends = 0;
+}
+
+int main(void)
+{
+	struct rs485_stats st;
+	struct slave s;
+	int fd, wfd;
+	int64_t min;
+
+	tap_plan(16);
+	if (sim_load())
+		tap_bail("cannot load ts_uart + ts7800_sim");
+	fd = bus_open(PORT);
+	if (fd < 0)
+		tap_bail("attach n_rs485 to /dev/ttyTSU%d", PORT);
+	if (slave_start(&s, PORT))
+		tap_bail("slave on the wire");
+	wfd = wire_open(PORT, O_NONBLOCK);
+	if (wfd < 0 || line_scan_start(&ls, wfd))
+		tap_bail("line log of the wire");
+
+	cut_case(fd, &s, I_CUT_SILENT, "silence", 2, 0, RS485_OK, 2);
+	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 0, RS485_OK, 2);
+	cut_case(fd, &s, I_CUT_BREAK, "a break", 2, 0, RS485_OK, 2);
+	cut_case(fd, &s, I_CUT_OVERRUN, "an RX FIFO overrun", 2, 0, RS485_OK, 2);
+	tap_ok(s.overrun_missed == 0, "the overrun happened (UART reported it in time: %u missed)",
+	       s.overrun_missed);
+	/* sticky RESEND: cut, the RESEND times out, the next retry is a RESEND again */
+	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 1, RS485_OK, 3);
+	cut_case(fd, &s, I_CUT_SILENT, "silence", 2, 2, RS485_TIMEOUT, 3);
+	/* no retry left: the cut response is the outcome */
+	cut_case(fd, &s, I_CUT_BREAK, "a break", 0, 0, RS485_BADCRC, 1);
+
+	line_scan_read(&ls);
+	min = line_report("idle before a request after a response", ls.gap_ns, ls.ngaps);
+	line_report("idle before a request after a request", ls.silent_ns, ls.nsilent);
+	tap_ok(ls.dropped == 0 && ls.ngaps >= 10 && min >= 2 * (int64_t)ls.char_ns,
+	       "every request after a response starts >= 2 characters (%u ns) after it "
+	       "(min %lld ns, %u gaps, %u log events dropped)", 2 * ls.char_ns, (long long)min,
+	       ls.ngaps, ls.dropped);
+	if (get_stats(fd, &st))
+		tap_bail("RS485_IOC_GET_STATS");
+	tap_ok(st.xfers == st.xfers_ok + st.xfers_failed,
+	       "statistics add up (xfers %llu, truncated %llu, overruns %llu, framing %llu)",
+	       (unsigned long long)st.xfers, (unsigned long long)st.rx_truncated,
+	       (unsigned long long)st.rx_overruns, (unsigned long long)st.rx_framing);
+	tap_ok(s.bad_frames == 0, "no malformed frame on the wire (%u)", s.bad_frames);
+	wire_set_log(wfd, 0);
+	close(wfd);
+	slave_stop(&s);
+	close(fd);
+	sim_unload();
+	return tap_finish();
+}
