@@ -122,6 +122,7 @@ struct rs485_bus {
 	wait_queue_head_t resp_wait;	/* the worker: response or dead */
 	wait_queue_head_t done_wait;	/* callers: their request done */
 	bool dead;			/* detaching or hung up: no new work */
+	bool rx_flush;			/* TCIFLUSH: rx resets at its next call */
 	/*
 	 * The line is idle for gap_chars before every request, retries
 	 * included: line_free is the end of the last request sent plus the gap

@@ -25,6 +25,31 @@ static int ldisc = N_RS485_DEFAULT_LDISC;
 module_param(ldisc, int, 0444);
 MODULE_PARM_DESC(ldisc, "line discipline number (default 29 = N_DEVELOPMENT)");
 
+/*
+ * The bus rate at attach: the port's speed if someone set one (ldattach -s,
+ * stty), i.e. it differs from the speed the tty driver starts its ports
+ * with; else the protocol's default. A speed set equal to the driver's
+ * initial one cannot be told apart from none: the log says which rule
+ * applied.
+ */
+static void rs485_attach_baud(struct rs485_bus *bus)
+{
+	struct tty_struct *tty = bus->tty;
+	struct rs485_config cfg = bus->cfg;
+	speed_t initial = tty_termios_baud_rate(&tty->driver->init_termios);
+
+	down_read(&tty->termios_rwsem);
+	cfg.baud = tty_termios_baud_rate(&tty->termios);
+	up_read(&tty->termios_rwsem);
+	if (cfg.baud != initial && !rs485_config_check(&cfg)) {
+		bus->cfg.baud = cfg.baud;
+		pr_info("%s: n_rs485: %u Bd, the port's speed\n", tty_name(tty), cfg.baud);
+	} else {
+		pr_info("%s: n_rs485: %u Bd, the default (port at %u Bd, its initial speed)\n",
+			tty_name(tty), bus->cfg.baud, cfg.baud);
+	}
+}
+
 static int rs485_open(struct tty_struct *tty)
 {
 	struct rs485_bus *bus;
@@ -46,6 +71,7 @@ static int rs485_open(struct tty_struct *tty)
 	bus->cfg.timeout_us = RS485_DEFAULT_TIMEOUT_US;
 	bus->cfg.retries = RS485_DEFAULT_RETRIES;
 	bus->cfg.gap_chars = RS485_DEFAULT_GAP;
+	rs485_attach_baud(bus);
 	rs485_rx_reset(bus);
 
 	bus->wq = alloc_ordered_workqueue("n_rs485/%s", 0, tty->name);
@@ -92,9 +118,20 @@ static void rs485_hangup(struct tty_struct *tty)
 	wake_up_interruptible_all(&tty->read_wait);
 }
 
+/*
+ * TCIFLUSH (and hangup): drop the event frames and the frame being received.
+ * The receive state machine belongs to receive_buf, which may be running:
+ * it resets itself at its next call.
+ */
 static void rs485_flush_buffer(struct tty_struct *tty)
 {
-	rs485_events_flush(tty->disc_data);
+	struct rs485_bus *bus = tty->disc_data;
+	unsigned long flags;
+
+	spin_lock_irqsave(&bus->lock, flags);
+	bus->rx_flush = true;
+	spin_unlock_irqrestore(&bus->lock, flags);
+	rs485_events_flush(bus);
 }
 
 static void rs485_receive_buf(struct tty_struct *tty, const unsigned char *cp,
@@ -121,10 +158,20 @@ static struct tty_ldisc_ops rs485_ldisc = {
 	.receive_buf	= rs485_receive_buf,
 };
 
+/*
+ * tty_register_ldisc() silently replaces whatever discipline holds the
+ * number. The kernel offers no way to ask whether a number is taken, so only
+ * the one the kernel leaves free for out-of-tree disciplines is accepted;
+ * every other number is assigned to an in-tree discipline (and a kernel that
+ * adds one raises NR_LDISCS, so numbers beyond our headers are refused too).
+ */
 static int __init rs485_init(void)
 {
-	if (ldisc <= N_TTY || ldisc >= NR_LDISCS)
-		return -EINVAL;
+	if (ldisc != N_DEVELOPMENT) {
+		pr_err("n_rs485: line discipline %d is assigned to another discipline; only %d (N_DEVELOPMENT) is free for this one\n",
+		       ldisc, N_DEVELOPMENT);
+		return -EBUSY;
+	}
 	rs485_crc_init();
 	rs485_ldisc.num = ldisc;
 	return tty_register_ldisc(&rs485_ldisc);

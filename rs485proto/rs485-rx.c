@@ -203,6 +203,11 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 	bus->stats.rx_bytes += count;
 	bus->rx_last = ktime_get();
 	lenient = bus->rx.lenient;
+	if (bus->rx_flush) {
+		/* TCIFLUSH: the frame in progress is gone (rs485_flush_buffer()). */
+		bus->rx_flush = false;
+		rs485_rx_reset(bus);
+	}
 	spin_unlock_irqrestore(&bus->lock, flags);
 
 	echo = rs485_rx_echo(bus, cp, fp, count);

@@ -114,9 +114,16 @@ static int rs485_write_all(struct rs485_bus *bus, const u8 *buf, size_t len)
 		len -= n;
 		if (!len)
 			break;
-		/* The driver's buffer is full: tty_wakeup() wakes write_wait. */
-		left = wait_event_timeout(tty->write_wait,
-					  tty_write_room(tty) || READ_ONCE(bus->dead), left);
+		/*
+		 * The driver's buffer is full. tty_wakeup() and the kill path
+		 * wake write_wait's interruptible sleepers only, so sleep
+		 * interruptibly (a work item gets no signals).
+		 */
+		left = wait_event_interruptible_timeout(tty->write_wait,
+							tty_write_room(tty) || READ_ONCE(bus->dead),
+							left);
+		if (left < 0)
+			return -EINTR;
 		if (!left)
 			return -ETIMEDOUT;
 	}

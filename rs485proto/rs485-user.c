@@ -275,14 +275,19 @@ static int rs485_ioc_set_config(struct rs485_bus *bus, void __user *arg)
 	return ret;
 }
 
+/*
+ * cfg is written under line_mutex and lock: lock suffices to read it, and
+ * does not wait for the transaction the worker runs under line_mutex.
+ */
 static int rs485_ioc_get_config(struct rs485_bus *bus, void __user *arg)
 {
 	struct rs485_config cfg;
+	unsigned long flags;
 
 	memset(&cfg, 0, sizeof(cfg));
-	mutex_lock(&bus->line_mutex);
+	spin_lock_irqsave(&bus->lock, flags);
 	cfg = bus->cfg;
-	mutex_unlock(&bus->line_mutex);
+	spin_unlock_irqrestore(&bus->lock, flags);
 	return copy_to_user(arg, &cfg, sizeof(cfg)) ? -EFAULT : 0;
 }
 

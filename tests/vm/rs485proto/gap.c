@@ -127,25 +127,12 @@ int main(void)
 	int fd, wfd;
 
 	tap_plan(9);
-	if (sim_load())
-		tap_bail("cannot load ts_uart + ts7800_sim");
-	fd = bus_open(PORT);
-	if (fd < 0)
-		tap_bail("attach n_rs485 to /dev/ttyTSU%d", PORT);
-	if (slave_start(&s, PORT))
-		tap_bail("slave on the wire");
-	wfd = wire_open(PORT, O_NONBLOCK);
-	if (wfd < 0 || wire_set_log(wfd, 1))
-		tap_bail("line log of the wire");
+	fd = bus_logged_setup(PORT, &s, &wfd);
 
 	at_rate(fd, wfd, &s, 9600);
 	at_rate(fd, wfd, &s, 115200);
 
 	tap_ok(s.bad_frames == 0, "no malformed frame on the wire (%u)", s.bad_frames);
-	wire_set_log(wfd, 0);
-	close(wfd);
-	slave_stop(&s);
-	close(fd);
-	sim_unload();
+	bus_logged_teardown(fd, wfd, &s);
 	return tap_finish();
 }

@@ -62,16 +62,8 @@ int main(void)
 	int64_t min;
 
 	tap_plan(16);
-	if (sim_load())
-		tap_bail("cannot load ts_uart + ts7800_sim");
-	fd = bus_open(PORT);
-	if (fd < 0)
-		tap_bail("attach n_rs485 to /dev/ttyTSU%d", PORT);
-	if (slave_start(&s, PORT))
-		tap_bail("slave on the wire");
-	wfd = wire_open(PORT, O_NONBLOCK);
-	if (wfd < 0 || line_scan_start(&ls, wfd))
-		tap_bail("line log of the wire");
+	fd = bus_logged_setup(PORT, &s, &wfd);
+	line_scan_start(&ls, wfd);
 
 	cut_case(fd, &s, I_CUT_SILENT, "silence", 2, 0, RS485_OK, 2);
 	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 0, RS485_OK, 2);
@@ -99,10 +91,6 @@ int main(void)
 	       (unsigned long long)st.xfers, (unsigned long long)st.rx_truncated,
 	       (unsigned long long)st.rx_overruns, (unsigned long long)st.rx_framing);
 	tap_ok(s.bad_frames == 0, "no malformed frame on the wire (%u)", s.bad_frames);
-	wire_set_log(wfd, 0);
-	close(wfd);
-	slave_stop(&s);
-	close(fd);
-	sim_unload();
+	bus_logged_teardown(fd, wfd, &s);
 	return tap_finish();
 }

@@ -567,6 +567,36 @@ static inline int64_t line_report(const char *what, int64_t *v, unsigned int n)
 	return v[0];
 }
 
+/*
+ * The usual set-up of a timing test: the simulator, the bus on /dev/ttyTSU<port>
+ * (returned), the slave, and a wire fd (*wfd) with the line log on.
+ */
+static inline int bus_logged_setup(int port, struct slave *s, int *wfd)
+{
+	int fd;
+
+	if (sim_load())
+		tap_bail("cannot load ts_uart + ts7800_sim");
+	fd = bus_open(port);
+	if (fd < 0)
+		tap_bail("attach n_rs485 to /dev/ttyTSU%d", port);
+	if (slave_start(s, port))
+		tap_bail("slave on the wire");
+	*wfd = wire_open(port, O_NONBLOCK);
+	if (*wfd < 0 || wire_set_log(*wfd, 1))
+		tap_bail("line log of the wire");
+	return fd;
+}
+
+static inline void bus_logged_teardown(int fd, int wfd, struct slave *s)
+{
+	wire_set_log(wfd, 0);
+	close(wfd);
+	slave_stop(s);
+	close(fd);
+	sim_unload();
+}
+
 /* One transaction; returns the ioctl result, the outcome in x. */
 static inline int xfer(int fd, struct rs485_xfer *x, uint8_t addr, uint8_t instr, uint8_t flags,
 		       const void *data, uint8_t len, uint32_t timeout_us, uint32_t retries)
