@@ -142,6 +142,14 @@ struct max6615_data {
 	 * lets a value read back unchanged while the chip keeps the register.
 	 */
 	struct max6615_duty_shadow duty[MAX6615_DUTY_REGS];
+	/*
+	 * Alarm and fault bits seen in OT_STATUS and FAN_STATUS but not yet
+	 * reported through their attribute. The fan-fail bits may clear when
+	 * FAN_STATUS is read, and every fan attribute reads it: without this
+	 * a failure read by fanN_input would never reach fanN_fault.
+	 */
+	unsigned int ot_latched;
+	unsigned int fan_latched;
 };
 
 static bool max6615_readable_reg(struct device *dev, unsigned int reg)
@@ -294,16 +302,45 @@ static int max6615_read_temp(struct max6615_data *data, int channel, long *val)
 	return 0;
 }
 
-static int max6615_read_bit(struct max6615_data *data, unsigned int reg,
-			    unsigned int mask, long *val)
+/*
+ * Read OT_STATUS or FAN_STATUS and remember its alarm/fault bits until the
+ * attribute reporting them has been read (max6615_read_latched()), as
+ * mainline hwmon drivers keep latched alarms. Caller holds data->lock.
+ */
+static int max6615_read_status(struct max6615_data *data, unsigned int reg,
+			       unsigned int *regval)
 {
-	unsigned int regval;
 	int ret;
 
-	ret = regmap_read(data->regmap, reg, &regval);
+	ret = regmap_read(data->regmap, reg, regval);
 	if (ret)
 		return ret;
-	*val = !!(regval & mask);
+	if (reg == MAX6615_REG_OT_STATUS)
+		data->ot_latched |= *regval & (MAX6615_OT_STATUS_ALARM(0) |
+					       MAX6615_OT_STATUS_ALARM(1));
+	else
+		data->fan_latched |= *regval & (MAX6615_FAN_STATUS_FAIL(0) |
+						MAX6615_FAN_STATUS_FAIL(1));
+	return 0;
+}
+
+/*
+ * An alarm or fault attribute: set if the condition is present now or was
+ * seen since the attribute was last read; reading it clears the memory.
+ * Caller holds data->lock.
+ */
+static int max6615_read_latched(struct max6615_data *data, unsigned int reg,
+				unsigned int mask, long *val)
+{
+	unsigned int regval, *latched;
+	int ret;
+
+	ret = max6615_read_status(data, reg, &regval);
+	if (ret)
+		return ret;
+	latched = reg == MAX6615_REG_OT_STATUS ? &data->ot_latched : &data->fan_latched;
+	*val = !!(*latched & mask);
+	*latched &= ~mask;
 	return 0;
 }
 
@@ -384,8 +421,8 @@ static int max6615_read_temp_attr(struct max6615_data *data, u32 attr,
 	case hwmon_temp_crit:
 		return max6615_read_degrees(data, MAX6615_REG_OT_LIMIT(channel), val);
 	case hwmon_temp_crit_alarm:
-		return max6615_read_bit(data, MAX6615_REG_OT_STATUS,
-					MAX6615_OT_STATUS_ALARM(channel), val);
+		return max6615_read_latched(data, MAX6615_REG_OT_STATUS,
+					    MAX6615_OT_STATUS_ALARM(channel), val);
 	case hwmon_temp_offset:
 		return max6615_read_offset(data, channel, val);
 	case hwmon_temp_type:
@@ -401,7 +438,7 @@ static int max6615_read_fan_input(struct max6615_data *data, int channel,
 	unsigned int status, count;
 	int ret;
 
-	ret = regmap_read(data->regmap, MAX6615_REG_FAN_STATUS, &status);
+	ret = max6615_read_status(data, MAX6615_REG_FAN_STATUS, &status);
 	if (ret)
 		return ret;
 	if (status & MAX6615_FAN_STATUS_TACH_DISABLE(channel))
@@ -445,6 +482,7 @@ static int max6615_write_fan_min(struct max6615_data *data, int channel,
 static int max6615_read_fan_attr(struct max6615_data *data, u32 attr,
 				 int channel, long *val)
 {
+	unsigned int status;
 	int ret;
 
 	switch (attr) {
@@ -453,14 +491,13 @@ static int max6615_read_fan_attr(struct max6615_data *data, u32 attr,
 	case hwmon_fan_min:
 		return max6615_read_fan_min(data, channel, val);
 	case hwmon_fan_fault:
-		return max6615_read_bit(data, MAX6615_REG_FAN_STATUS,
-					MAX6615_FAN_STATUS_FAIL(channel), val);
+		return max6615_read_latched(data, MAX6615_REG_FAN_STATUS,
+					    MAX6615_FAN_STATUS_FAIL(channel), val);
 	case hwmon_fan_enable:
-		ret = max6615_read_bit(data, MAX6615_REG_FAN_STATUS,
-				       MAX6615_FAN_STATUS_TACH_DISABLE(channel), val);
+		ret = max6615_read_status(data, MAX6615_REG_FAN_STATUS, &status);
 		if (ret)
 			return ret;
-		*val = !*val;
+		*val = !(status & MAX6615_FAN_STATUS_TACH_DISABLE(channel));
 		return 0;
 	default:
 		return -EOPNOTSUPP;
@@ -680,6 +717,8 @@ static int max6615_write_fan_attr(struct max6615_data *data, u32 attr,
 				  int channel, long val)
 {
 	unsigned int disable = MAX6615_FAN_STATUS_TACH_DISABLE(channel);
+	unsigned int status;
+	int ret;
 
 	switch (attr) {
 	case hwmon_fan_min:
@@ -687,9 +726,15 @@ static int max6615_write_fan_attr(struct max6615_data *data, u32 attr,
 	case hwmon_fan_enable:
 		if (val != 0 && val != 1)
 			return -EINVAL;
-		/* FAN_STATUS mixes status and settings: read-modify-write. */
-		return regmap_update_bits(data->regmap, MAX6615_REG_FAN_STATUS,
-					  disable, val ? 0 : disable);
+		/*
+		 * FAN_STATUS mixes status and settings: read-modify-write,
+		 * with the read latching the fail bits like any other.
+		 */
+		ret = max6615_read_status(data, MAX6615_REG_FAN_STATUS, &status);
+		if (ret)
+			return ret;
+		status = (status & ~disable) | (val ? 0 : disable);
+		return regmap_write(data->regmap, MAX6615_REG_FAN_STATUS, status);
 	default:
 		return -EOPNOTSUPP;
 	}

@@ -54,6 +54,7 @@ struct ts7800_dio {
 	u16 last_in;		/* input levels at the previous poll */
 	struct delayed_work poll;
 	bool polling;
+	bool dying;		/* unbinding: polling never starts again */
 };
 
 static int ts7800_dio_read_in(struct ts7800_dio *dio, u16 *levels)
@@ -180,15 +181,6 @@ static int ts7800_dio_init_valid_mask(struct gpio_chip *gc, unsigned long *valid
 	return 0;
 }
 
-/*
- * gpiolib 6.1 does not check the valid mask when a line is requested:
- * refuse the power and SPI pins here, as pins already in use by the board.
- */
-static int ts7800_dio_request(struct gpio_chip *gc, unsigned int offset)
-{
-	return BIT(offset) & TS7800_DIO_RESERVED ? -EBUSY : 0;
-}
-
 /* Polled edges ---------------------------------------------------------- */
 
 static void ts7800_dio_poll(struct work_struct *work)
@@ -274,7 +266,7 @@ static void ts7800_dio_irq_bus_sync_unlock(struct irq_data *d)
 	bool start = false, stop = false;
 	u16 now;
 
-	if (dio->irq_enabled && !dio->polling) {
+	if (dio->irq_enabled && !dio->polling && !dio->dying) {
 		if (!ts7800_dio_read_in(dio, &now))
 			dio->last_in = now;
 		dio->polling = true;
@@ -302,10 +294,21 @@ static const struct irq_chip ts7800_dio_irq_chip = {
 	GPIOCHIP_IRQ_RESOURCE_HELPERS,
 };
 
+/*
+ * Registered after the gpiochip, so devres runs it before the gpiochip and
+ * its interrupt domain go away: a poll still running then would look up
+ * mappings in the freed domain. A line may still have its interrupt
+ * requested (a user-space monitor holds it across the unbind), so polling
+ * must also never start again.
+ */
 static void ts7800_dio_stop_poll(void *data)
 {
 	struct ts7800_dio *dio = data;
 
+	mutex_lock(&dio->irq_lock);
+	dio->dying = true;
+	dio->polling = false;
+	mutex_unlock(&dio->irq_lock);
 	cancel_delayed_work_sync(&dio->poll);
 }
 
@@ -350,9 +353,6 @@ static int ts7800_dio_probe(struct platform_device *pdev)
 	spin_lock_init(&dio->lock);
 	mutex_init(&dio->irq_lock);
 	INIT_DELAYED_WORK(&dio->poll, ts7800_dio_poll);
-	ret = devm_add_action_or_reset(dev, ts7800_dio_stop_poll, dio);
-	if (ret)
-		return ret;
 
 	/*
 	 * Start from the latch as found (a boot script may hold a line low);
@@ -371,7 +371,11 @@ static int ts7800_dio_probe(struct platform_device *pdev)
 	dio->gc.names = ts7800_dio_names;
 	dio->gc.can_sleep = false;
 	dio->gc.init_valid_mask = ts7800_dio_init_valid_mask;
-	dio->gc.request = ts7800_dio_request;
+	/*
+	 * gpiolib 6.1 refuses lines outside the valid mask (the power and SPI
+	 * pins) only for chips that have a request callback.
+	 */
+	dio->gc.request = gpiochip_generic_request;
 	dio->gc.get_direction = ts7800_dio_get_direction;
 	dio->gc.direction_input = ts7800_dio_direction_input;
 	dio->gc.direction_output = ts7800_dio_direction_output;
@@ -390,6 +394,9 @@ static int ts7800_dio_probe(struct platform_device *pdev)
 	ret = devm_gpiochip_add_data(dev, &dio->gc, dio);
 	if (ret)
 		return dev_err_probe(dev, ret, "cannot add gpiochip\n");
+	ret = devm_add_action_or_reset(dev, ts7800_dio_stop_poll, dio);
+	if (ret)
+		return ret;
 	return ts7800_dio_add_i2c(dev);
 }
 
