@@ -12,6 +12,7 @@
  * reached through the parent's regmap, the interrupt is the parent's.
  */
 #include <linux/bitfield.h>
+#include <linux/hrtimer.h>
 #include <linux/interrupt.h>
 #include <linux/mod_devicetable.h>
 #include <linux/module.h>
@@ -27,8 +28,14 @@
 
 #define TS_UART_DRV_NAME	"ts-uart"
 #define TS_UART_DEV_NAME	"ttyTSU"
-/* Out-of-tree drivers have no PORT_* constant; any non-zero type works. */
-#define TS_UART_PORT_TYPE	1
+/*
+ * serial_core's port type (TIOCGSERIAL, sysfs "type"). Mainline assigns the
+ * PORT_* numbers in include/uapi/linux/serial_core.h (0..123 in 6.1); an
+ * out-of-tree driver has none, so it takes a number far above that range
+ * instead of posing as one of them (1 is PORT_8250). PORT_UNKNOWN (0) is no
+ * choice: serial_core refuses to open such a port.
+ */
+#define TS_UART_PORT_TYPE	7800
 #define TS_UART_MIN_BAUD	2400
 #define TS_UART_MAX_BAUD	115200
 /* Nominal FIFO size advertised to serial_core (the real depth is unknown). */
@@ -56,6 +63,10 @@ struct ts_uart {
 	u16 ctrl;			/* control bits of STAT; port lock */
 	bool oerr;			/* OERR seen, not yet reported; port lock */
 	struct ts_uart_frame frame;	/* port lock */
+	/* RS-485: RTS is at its "on send" level; port lock */
+	bool rs485_sending;
+	/* RS-485: polls TRE after the last character went into the FIFO */
+	struct hrtimer rs485_timer;
 };
 
 static inline struct ts_uart *to_ts_uart(struct uart_port *port)
@@ -92,6 +103,94 @@ static void ts_uart_overrun(struct ts_uart *up)
 	port->icount.overrun++;
 	if (!(port->ignore_status_mask & TS_UART_ST_OE))
 		tty_insert_flip_char(&port->state->port, 0, TTY_OVERRUN);
+}
+
+/* RTS level: asserted or not (STAT RTS is the line's level). */
+static void ts_uart_set_rts(struct ts_uart *up, bool on)
+{
+	if (on)
+		up->ctrl |= TS7800_STAT_RTS;
+	else
+		up->ctrl &= ~TS7800_STAT_RTS;
+	ts_uart_write_ctrl(up);
+}
+
+static bool ts_uart_rs485_on(struct uart_port *port)
+{
+	return port->rs485.flags & SER_RS485_ENABLED;
+}
+
+/*
+ * RS-485 direction control. The TS-UART has no driver-enable output of its
+ * own (ts7800-notes 1.10), so the transceiver is driven from RTS, switched
+ * by the driver as mainline's software RS-485 does: RTS goes to its "on
+ * send" level before the first character enters the FIFO and back once the
+ * transmitter is completely idle (STAT TRE) after the last one.
+ */
+static void ts_uart_rs485_start(struct ts_uart *up)
+{
+	struct uart_port *port = &up->port;
+
+	if (!ts_uart_rs485_on(port) || up->rs485_sending)
+		return;
+	hrtimer_try_to_cancel(&up->rs485_timer);
+	up->rs485_sending = true;
+	ts_uart_set_rts(up, port->rs485.flags & SER_RS485_RTS_ON_SEND);
+}
+
+static void ts_uart_rs485_idle(struct ts_uart *up)
+{
+	struct uart_port *port = &up->port;
+
+	up->rs485_sending = false;
+	ts_uart_set_rts(up, port->rs485.flags & SER_RS485_RTS_AFTER_SEND);
+}
+
+/* One character time: how long until TRE is worth reading again. */
+static ktime_t ts_uart_rs485_period(struct uart_port *port)
+{
+	return ns_to_ktime(max_t(u64, READ_ONCE(port->frame_time), NSEC_PER_USEC));
+}
+
+/*
+ * Nothing more to send: release the line when the stop bit of the last
+ * character is out, else look again one character time later (the TS-UART
+ * has no "transmitter idle" interrupt).
+ */
+static void ts_uart_rs485_done(struct ts_uart *up, unsigned int stat)
+{
+	struct uart_port *port = &up->port;
+
+	if (!up->rs485_sending || !uart_circ_empty(&port->state->xmit))
+		return;
+	if (stat & TS7800_STAT_TRE)
+		ts_uart_rs485_idle(up);
+	else if (!hrtimer_active(&up->rs485_timer))
+		hrtimer_start(&up->rs485_timer,
+			      ts_uart_rs485_period(port),
+			      HRTIMER_MODE_REL);
+}
+
+static enum hrtimer_restart ts_uart_rs485_poll(struct hrtimer *t)
+{
+	struct ts_uart *up = container_of(t, struct ts_uart, rs485_timer);
+	struct uart_port *port = &up->port;
+	enum hrtimer_restart again = HRTIMER_NORESTART;
+	unsigned long flags;
+	unsigned int stat;
+
+	uart_port_lock_irqsave(port, &flags);
+	if (up->rs485_sending && !ts_uart_read_stat(up, &stat)) {
+		if (stat & TS7800_STAT_TRE) {
+			if (uart_circ_empty(&port->state->xmit))
+				ts_uart_rs485_idle(up);
+		} else {
+			hrtimer_forward_now(t, ts_uart_rs485_period(port));
+			again = HRTIMER_RESTART;
+		}
+	}
+	uart_port_unlock_irqrestore(port, flags);
+	return again;
 }
 
 /* Read one character; stat is the STAT value that showed DR. */
@@ -140,22 +239,26 @@ static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
 	else if (status & TS_UART_ST_FE)
 		flag = TTY_FRAME;
 
-	if (uart_handle_sysrq_char(port, ch))
+	if (uart_prepare_sysrq_char(port, ch))
 		return;
 	uart_insert_char(port, status, TS_UART_ST_OE, ch, flag);
 }
 
-/* Called with the port lock held and STAT just read showing TBRE. */
-static void ts_uart_tx_chars(struct ts_uart *up, unsigned int stat)
+/*
+ * Called with the port lock held and *stat just read showing TBRE; leaves
+ * the last STAT read in *stat. Return: true if a character was written.
+ */
+static bool ts_uart_tx_chars(struct ts_uart *up, unsigned int *stat)
 {
 	struct uart_port *port = &up->port;
 	struct circ_buf *xmit = &port->state->xmit;
+	bool sent = false;
 	u16 word;
 
 	/* tx_empty() may serve a port that is not started (no buffer). */
 	if (!xmit->buf)
-		return;
-	while (stat & TS7800_STAT_TBRE) {
+		return false;
+	while (*stat & TS7800_STAT_TBRE) {
 		if (port->x_char) {
 			word = ts_uart_frame_encode(&up->frame, port->x_char);
 			port->x_char = 0;
@@ -166,12 +269,17 @@ static void ts_uart_tx_chars(struct ts_uart *up, unsigned int stat)
 		} else {
 			break;
 		}
-		if (regmap_write(up->map, up->data_reg, word) ||
-		    ts_uart_read_stat(up, &stat))
+		ts_uart_rs485_start(up);
+		if (regmap_write(up->map, up->data_reg, word))
+			break;
+		sent = true;
+		if (ts_uart_read_stat(up, stat))
 			break;
 	}
 	if (uart_circ_chars_pending(xmit) < WAKEUP_CHARS)
 		uart_write_wakeup(port);
+	ts_uart_rs485_done(up, *stat);
+	return sent;
 }
 
 /*
@@ -179,18 +287,21 @@ static void ts_uart_tx_chars(struct ts_uart *up, unsigned int stat)
  * left and no room or nothing to transmit. Ending only then makes the ISR
  * correct for level-triggered and for edge-triggered (event) sources.
  * Called with the port lock held; pushes received characters to the tty.
- * Returns the last STAT value read (0 if the register could not be read).
+ * *stat is the last STAT value read (0 if the register could not be read).
+ * Return: true if there was something to do (a character received or sent,
+ * an overrun reported), the ISR's IRQ_HANDLED.
  */
-static unsigned int ts_uart_service(struct ts_uart *up)
+static bool ts_uart_service(struct ts_uart *up, unsigned int *stat)
 {
-	unsigned int stat = 0, n;
-	bool rx = false;
+	bool rx = false, tx = false;
+	unsigned int n;
 
+	*stat = 0;
 	for (n = 0; n < TS_UART_ISR_BUDGET; n++) {
-		if (ts_uart_read_stat(up, &stat))
+		if (ts_uart_read_stat(up, stat))
 			break;
-		if (stat & TS7800_STAT_DR) {
-			ts_uart_rx_char(up, stat);
+		if (*stat & TS7800_STAT_DR) {
+			ts_uart_rx_char(up, *stat);
 			rx = true;
 			continue;
 		}
@@ -198,26 +309,29 @@ static unsigned int ts_uart_service(struct ts_uart *up)
 			ts_uart_overrun(up);
 			rx = true;
 		}
-		if (stat & TS7800_STAT_TBRE)
-			ts_uart_tx_chars(up, stat);
+		if (*stat & TS7800_STAT_TBRE)
+			tx = ts_uart_tx_chars(up, stat);
 		break;
 	}
 	if (n == TS_UART_ISR_BUDGET)
 		dev_err_ratelimited(up->port.dev, "receive data ready never clears\n");
 	if (rx)
 		tty_flip_buffer_push(&up->port.state->port);
-	return stat;
+	return rx || tx;
 }
 
 static irqreturn_t ts_uart_isr(int irq, void *dev_id)
 {
 	struct ts_uart *up = dev_id;
 	unsigned long flags;
+	unsigned int stat;
+	bool handled;
 
 	uart_port_lock_irqsave(&up->port, &flags);
-	ts_uart_service(up);
-	uart_port_unlock_irqrestore(&up->port, flags);
-	return IRQ_HANDLED;
+	handled = ts_uart_service(up, &stat);
+	/* A sysrq character is handled after the port lock is dropped. */
+	uart_unlock_and_check_sysrq_irqrestore(&up->port, flags);
+	return IRQ_RETVAL(handled);
 }
 
 static unsigned int ts_uart_tx_empty(struct uart_port *port)
@@ -227,8 +341,8 @@ static unsigned int ts_uart_tx_empty(struct uart_port *port)
 	unsigned int stat;
 
 	uart_port_lock_irqsave(port, &flags);
-	stat = ts_uart_service(up);
-	uart_port_unlock_irqrestore(port, flags);
+	ts_uart_service(up, &stat);
+	uart_unlock_and_check_sysrq_irqrestore(port, flags);
 	return (stat & TS7800_STAT_TRE) ? TIOCSER_TEMT : 0;
 }
 
@@ -236,20 +350,21 @@ static void ts_uart_set_mctrl(struct uart_port *port, unsigned int mctrl)
 {
 	struct ts_uart *up = to_ts_uart(port);
 
-	if (mctrl & TIOCM_RTS)
-		up->ctrl |= TS7800_STAT_RTS;
-	else
-		up->ctrl &= ~TS7800_STAT_RTS;
-	ts_uart_write_ctrl(up);
+	/* In RS-485 mode RTS is the transceiver's driver enable. */
+	if (ts_uart_rs485_on(port))
+		return;
+	ts_uart_set_rts(up, mctrl & TIOCM_RTS);
 }
 
 static unsigned int ts_uart_get_mctrl(struct uart_port *port)
 {
 	struct ts_uart *up = to_ts_uart(port);
 	unsigned int mctrl = TIOCM_CAR | TIOCM_DSR;
+	unsigned int stat;
 
 	/* The port has no DCD/DSR lines: report them asserted, like a 3-wire port. */
-	if (ts_uart_service(up) & TS7800_STAT_CTS)
+	ts_uart_service(up, &stat);
+	if (stat & TS7800_STAT_CTS)
 		mctrl |= TIOCM_CTS;
 	return mctrl;
 }
@@ -261,7 +376,9 @@ static void ts_uart_stop_tx(struct uart_port *port)
 
 static void ts_uart_start_tx(struct uart_port *port)
 {
-	ts_uart_service(to_ts_uart(port));
+	unsigned int stat;
+
+	ts_uart_service(to_ts_uart(port), &stat);
 }
 
 static void ts_uart_stop_rx(struct uart_port *port)
@@ -308,6 +425,7 @@ static int ts_uart_startup(struct uart_port *port)
 {
 	struct ts_uart *up = to_ts_uart(port);
 	unsigned long flags;
+	unsigned int stat;
 	int ret;
 
 	if (!try_module_get(THIS_MODULE))
@@ -328,8 +446,8 @@ static int ts_uart_startup(struct uart_port *port)
 	 * the port once so that nothing waits for an interrupt that is gone.
 	 */
 	uart_port_lock_irqsave(port, &flags);
-	ts_uart_service(up);
-	uart_port_unlock_irqrestore(port, flags);
+	ts_uart_service(up, &stat);
+	uart_unlock_and_check_sysrq_irqrestore(port, flags);
 	return 0;
 }
 
@@ -339,9 +457,13 @@ static void ts_uart_shutdown(struct uart_port *port)
 	unsigned long flags;
 
 	free_irq(port->irq, up);
+	hrtimer_cancel(&up->rs485_timer);
 	uart_port_lock_irqsave(port, &flags);
 	up->ctrl &= ~TS7800_STAT_TXBRK;
-	ts_uart_write_ctrl(up);
+	if (up->rs485_sending)
+		ts_uart_rs485_idle(up);
+	else
+		ts_uart_write_ctrl(up);
 	uart_port_unlock_irqrestore(port, flags);
 	module_put(THIS_MODULE);
 }
@@ -420,12 +542,24 @@ static void ts_uart_set_termios(struct uart_port *port, struct ktermios *termios
 }
 
 /*
- * No RS-485 direction control is known for the TS-UART (docs/tsuart.md):
- * the settings are accepted and reported back, the line is not switched.
+ * Called with the port lock held (or before the port is up). RTS drives
+ * the transceiver: put it at the idle level of the new setting, or give it
+ * back to TIOCM when RS-485 is switched off (serial_core then calls
+ * set_mctrl). The TS-UART's receiver cannot be switched off while sending,
+ * so RX_DURING_TX is what the port does in any case and is reported so.
  */
 static int ts_uart_rs485_config(struct uart_port *port, struct ktermios *termios,
 				struct serial_rs485 *rs485)
 {
+	struct ts_uart *up = to_ts_uart(port);
+
+	if (!(rs485->flags & SER_RS485_ENABLED)) {
+		up->rs485_sending = false;
+		return 0;
+	}
+	rs485->flags |= SER_RS485_RX_DURING_TX;
+	up->rs485_sending = false;
+	ts_uart_set_rts(up, rs485->flags & SER_RS485_RTS_AFTER_SEND);
 	return 0;
 }
 
@@ -523,7 +657,10 @@ static int ts_uart_probe(struct platform_device *pdev)
 	port->uartclk = TS7800_UART_BITCLK_HZ;
 	port->has_sysrq = IS_ENABLED(CONFIG_SERIAL_CORE_CONSOLE);
 	port->rs485_config = ts_uart_rs485_config;
-	port->rs485_supported.flags = SER_RS485_ENABLED | SER_RS485_RX_DURING_TX;
+	port->rs485_supported.flags = SER_RS485_ENABLED | SER_RS485_RTS_ON_SEND |
+				      SER_RS485_RTS_AFTER_SEND | SER_RS485_RX_DURING_TX;
+	hrtimer_init(&up->rs485_timer, CLOCK_MONOTONIC, HRTIMER_MODE_REL);
+	up->rs485_timer.function = ts_uart_rs485_poll;
 
 	platform_set_drvdata(pdev, up);
 	return uart_add_one_port(&ts_uart_driver, port);

@@ -25,8 +25,9 @@ static enum ts_uart_parity ts_uart_parity_of(tcflag_t cflag)
  * @f: layout to fill
  * @cflag: termios c_cflag
  *
- * Return: @cflag with the character size the hardware will really use (CS5
- * and CS6 are not supported and become CS8).
+ * Return: @cflag as the hardware will really send it: CS5 and CS6 are not
+ * supported and become CS8, and CSTOPB is dropped when data and parity fill
+ * the 9-bit character (8 data bits with parity), leaving no bit for it.
  */
 tcflag_t ts_uart_frame_init(struct ts_uart_frame *f, tcflag_t cflag)
 {
@@ -39,6 +40,8 @@ tcflag_t ts_uart_frame_init(struct ts_uart_frame *f, tcflag_t cflag)
 	f->data_bits = (cflag & CSIZE) == CS7 ? 7 : 8;
 	f->parity = ts_uart_parity_of(cflag);
 	used = f->data_bits + (f->parity != TS_UART_PARITY_NONE);
+	if (used >= 9)
+		cflag &= ~CSTOPB;
 	f->hw_bits = used + !!(cflag & CSTOPB) > 8 ? 9 : 8;
 	f->fill = used < f->hw_bits ? GENMASK(f->hw_bits - 1, used) : 0;
 	return cflag;

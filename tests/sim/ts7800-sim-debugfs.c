@@ -10,6 +10,8 @@
  *   peer                  cross-connect to port M (both ways), -1 to undo
  * /sys/kernel/debug/ts7800-sim/irq_hold
  *                         1: deliver no interrupt (a late CPU), 0: deliver again
+ * /sys/kernel/debug/ts7800-sim/irq_raise
+ *                         write k: a spurious interrupt of source k (if enabled)
  */
 #include <linux/debugfs.h>
 #include <linux/random.h>
@@ -126,6 +128,15 @@ static int irq_hold_set(void *data, u64 val)
 }
 DEFINE_DEBUGFS_ATTRIBUTE(irq_hold_fops, irq_hold_get, irq_hold_set, "%llu\n");
 
+static int irq_raise_set(void *data, u64 val)
+{
+	if (val >= TS7800_FPGA_NR_IRQS)
+		return -EINVAL;
+	ts7800_sim_irq_raise(data, val);
+	return 0;
+}
+DEFINE_DEBUGFS_ATTRIBUTE(irq_raise_fops, NULL, irq_raise_set, "%llu\n");
+
 void sim_debugfs_init(struct ts7800_sim *sim)
 {
 	struct dentry *dir;
@@ -134,6 +145,7 @@ void sim_debugfs_init(struct ts7800_sim *sim)
 
 	sim->debugfs = debugfs_create_dir(SIM_DEBUGFS_DIR, NULL);
 	debugfs_create_file_unsafe("irq_hold", 0600, sim->debugfs, sim, &irq_hold_fops);
+	debugfs_create_file_unsafe("irq_raise", 0200, sim->debugfs, sim, &irq_raise_fops);
 	for (n = 0; n < sim->nports; n++) {
 		struct sim_uart *u = &sim->uart[n];
 

@@ -120,6 +120,20 @@ void ts7800_sim_irq_set_hold(struct ts7800_sim *sim, bool hold)
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 }
 
+/*
+ * Fault injection: the doorbell rings for an enabled source that has nothing
+ * to report (a spurious interrupt, as a glitch or a stale MSI would cause).
+ */
+void ts7800_sim_irq_raise(struct ts7800_sim *sim, unsigned int hwirq)
+{
+	unsigned long flags;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	sim->irq_cause |= BIT(hwirq) & sim->irq_enable;
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
+	ts7800_sim_irq_kick(sim);
+}
+
 static void sim_irq_work(struct irq_work *work)
 {
 	ts7800_sim_irq_deliver(container_of(work, struct ts7800_sim, irq_work));

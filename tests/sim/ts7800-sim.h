@@ -197,6 +197,7 @@ void ts7800_sim_irq_source(struct ts7800_sim *sim, unsigned int hwirq, bool leve
 void ts7800_sim_irq_set_hold(struct ts7800_sim *sim, bool hold);
 void ts7800_sim_irq_deliver(struct ts7800_sim *sim);
 void ts7800_sim_irq_kick(struct ts7800_sim *sim);
+void ts7800_sim_irq_raise(struct ts7800_sim *sim, unsigned int hwirq);
 
 /* ts7800-sim-uart.c */
 int sim_uart_init(struct ts7800_sim *sim, struct sim_uart *u, unsigned int idx);
