@@ -24,7 +24,6 @@
 #include <linux/ts-can1.h>
 
 #include "sja1000-core.h"
-#include "ts-can1.h"
 
 /* PC/104 interrupt lines a TS-CAN1 can be jumpered to. */
 #define TS_CAN1_FIRST_LINE	5
@@ -106,7 +105,7 @@ static void ts_can1_release(struct ts_can1_bus *bus, unsigned int port,
 		devm_release_mem_region(&bus->pdev->dev, bus->phys + port, size);
 }
 
-/* Linux interrupt of a PC/104 line: from the provider, else the board. */
+/* Linux interrupt of a PC/104 line, a named resource from the bus provider. */
 static int ts_can1_line_irq(struct ts_can1_bus *bus, unsigned int line)
 {
 	int *irq = &bus->irq[line - TS_CAN1_FIRST_LINE];
@@ -116,8 +115,6 @@ static int ts_can1_line_irq(struct ts_can1_bus *bus, unsigned int line)
 		return *irq;
 	snprintf(name, sizeof(name), TS_CAN1_IRQ_NAME_FMT, line);
 	*irq = platform_get_irq_byname_optional(bus->pdev, name);
-	if (*irq == -ENXIO)
-		*irq = ts_can1_board_irq(&bus->pdev->dev, line);
 	return *irq;
 }
 
@@ -288,6 +285,9 @@ static const struct regmap_config ts_can1_io_regmap_config = {
 	.reg_bits	= 32,
 	.val_bits	= 8,
 	.max_register	= TS_CAN1_IO_SIZE - 1,
+	.readable_reg	= ts_can1_io_readable,
+	.writeable_reg	= ts_can1_io_readable,
+	.precious_reg	= ts_can1_io_precious,
 	.cache_type	= REGCACHE_NONE,
 };
 
@@ -366,26 +366,7 @@ static struct platform_driver ts_can1_driver = {
 	},
 };
 
-static int __init ts_can1_init(void)
-{
-	int ret;
-
-	ret = platform_driver_register(&ts_can1_driver);
-	if (ret)
-		return ret;
-	ret = ts_can1_board_register();
-	if (ret)
-		platform_driver_unregister(&ts_can1_driver);
-	return ret;
-}
-module_init(ts_can1_init);
-
-static void __exit ts_can1_exit(void)
-{
-	ts_can1_board_unregister();
-	platform_driver_unregister(&ts_can1_driver);
-}
-module_exit(ts_can1_exit);
+module_platform_driver(ts_can1_driver);
 
 MODULE_DESCRIPTION("TS-CAN1 PC/104 CAN card (SJA1000) on a memory-mapped PC/104 bus");
 MODULE_LICENSE("GPL");

@@ -4,17 +4,21 @@
  *
  * mach-orion5x describes the board in C, not in a device tree, and creates no
  * device for the FPGA core. Only on that machine this creates one, with the
- * FPGA window, the Orion host-to-CPU doorbell registers and the doorbell's
- * main interrupt; the probe then checks the FPGA ID before using anything.
+ * FPGA window, the Orion host-to-CPU doorbell registers, the doorbell's
+ * main interrupt and the PC/104 8-bit I/O window (handed to the PC/104 bus
+ * child); the probe then checks the FPGA ID before using anything.
  */
 #include <linux/ioport.h>
 #include <linux/platform_device.h>
+#include <linux/ts-can1.h>
 #include <linux/ts7800-fpga.h>
 #include <asm/mach-types.h>
 
 #include "ts7800-fpga-core.h"
 
 #define TS7800_FPGA_PHYS		0xe8000000
+/* PC/104 8-bit I/O cycles: this window + ISA port (ts7800-notes 3.3). */
+#define TS7800_PC104_IO_PHYS		0xee000000
 #define ORION5X_DOORBELL_H2C_PHYS	0xf1020400
 #define ORION5X_DOORBELL_REGS_SIZE	8
 /* mach-orion5x numbers its main interrupts 1 + cause bit; doorbell = bit 1. */
@@ -28,6 +32,7 @@ int ts7800_fpga_board_register(void)
 		DEFINE_RES_MEM(TS7800_FPGA_PHYS, TS7800_FPGA_WINDOW_SIZE),
 		DEFINE_RES_MEM(ORION5X_DOORBELL_H2C_PHYS, ORION5X_DOORBELL_REGS_SIZE),
 		DEFINE_RES_IRQ(ORION5X_IRQ_DOORBELL_H2C),
+		DEFINE_RES_MEM_NAMED(TS7800_PC104_IO_PHYS, TS_CAN1_IO_SIZE, "pc104-io"),
 	};
 	struct platform_device *pdev;
 

@@ -15,6 +15,7 @@
 #include <linux/module.h>
 #include <linux/platform_device.h>
 #include <linux/regmap.h>
+#include <linux/ts-can1.h>
 #include <linux/ts7800-fpga.h>
 
 /* Divisors as written by the vendor's TS-7800 loader: round(12.5 MHz / baud). */
@@ -28,6 +29,57 @@ const struct ts7800_uart_rate ts7800_uart_rates[TS7800_UART_NR_CODES] = {
 	{ 2400, 5208 },
 };
 EXPORT_SYMBOL_GPL(ts7800_uart_rates);
+
+/*
+ * The blocks of the window that our drivers own. Everything else (NAND,
+ * RTC, random number generator, registers of unknown meaning) belongs to
+ * other drivers or to nobody: not even a regmap debugfs dump may read it.
+ */
+static bool ts7800_fpga_readable_reg(struct device *dev, unsigned int reg)
+{
+	switch (reg) {
+	case TS7800_FPGA_ID_LO ... TS7800_FPGA_ID_HI:
+	case TS7800_DIO_IN ... TS7800_DIO_OUT + 2:
+	case TS7800_FPGA_PC104_FUNC_FIRST ... TS7800_FPGA_PC104_FUNC_LAST:
+	case TS7800_UART_BASE(0) ... TS7800_UART_DIVISOR(TS7800_UART_NR_CODES - 1):
+	case TS7800_FPGA_IRQ_MASK_LO ... TS7800_FPGA_IRQ_MASK_HI:
+		return true;
+	default:
+		return false;
+	}
+}
+
+/*
+ * Reads with side effects: DATA pops the receive FIFO, STAT may clear OERR
+ * and the transmit event (docs/tsuart.md). Only the TS-UART driver reads
+ * them; a debugfs dump must not.
+ */
+static bool ts7800_fpga_precious_reg(struct device *dev, unsigned int reg)
+{
+	return reg >= TS7800_UART_BASE(0) &&
+	       reg < TS7800_UART_BASE(TS7800_UART_MAX_PORTS);
+}
+
+/*
+ * The FPGA window as the child drivers see it. Every access is 16 bits wide
+ * (docs/tsuart.md, "Access width"): 32-bit registers are two halves, low
+ * first. Used by the hardware core (over MMIO) and by the simulator (with
+ * its own reg_read/reg_write), so both enforce the same rules.
+ */
+const struct regmap_config ts7800_fpga_regmap_config = {
+	.name		= TS7800_FPGA_REGMAP_NAME,
+	.reg_bits	= 32,
+	.val_bits	= 16,
+	.reg_stride	= 2,
+	.max_register	= TS7800_FPGA_WINDOW_SIZE - 2,
+	.readable_reg	= ts7800_fpga_readable_reg,
+	.writeable_reg	= ts7800_fpga_readable_reg,
+	.precious_reg	= ts7800_fpga_precious_reg,
+	.cache_type	= REGCACHE_NONE,
+	/* Used by the irqchip (mask/unmask, hard irq context even on RT). */
+	.use_raw_spinlock = true,
+};
+EXPORT_SYMBOL_GPL(ts7800_fpga_regmap_config);
 
 static int ts7800_fpga_read32(struct regmap *map, unsigned int lo, u32 *val)
 {
@@ -223,3 +275,67 @@ int ts7800_fpga_add_dio(struct device *parent)
 	return devm_add_action_or_reset(parent, ts7800_fpga_remove_child, pdev);
 }
 EXPORT_SYMBOL_GPL(ts7800_fpga_add_dio);
+
+/*
+ * PC/104 IRQ5/6/7 are FPGA interrupt sources 5/6/7 (ts7800-notes 1.6); the
+ * TS-CAN1 driver finds them as the named resources "irq5".."irq7".
+ */
+#define TS7800_FPGA_PC104_FIRST_IRQ	5
+#define TS7800_FPGA_PC104_NR_IRQS	3
+
+/**
+ * ts7800_fpga_add_pc104 - register the PC/104 bus device (driver: ts-can1)
+ * @parent: FPGA device (or the simulator of the bus)
+ * @domain: @parent's irq domain, hwirq k = FPGA interrupt source k
+ * @io: the PC/104 8-bit I/O window (physical), or NULL when @parent has a
+ *	regmap named TS_CAN1_IO_REGMAP instead
+ *
+ * The device is a child of @parent and everything it uses belongs to
+ * @parent: the interrupt mappings are made here and disposed of by @parent's
+ * devres after the child is gone, so unbinding @parent removes the bus
+ * device (and unbinds its driver) before the irq domain goes away.
+ *
+ * Return: 0 or a negative error.
+ */
+int ts7800_fpga_add_pc104(struct device *parent, struct irq_domain *domain,
+			  const struct resource *io)
+{
+	static const char * const names[TS7800_FPGA_PC104_NR_IRQS] = {
+		"irq5", "irq6", "irq7",
+	};
+	struct resource res[TS7800_FPGA_PC104_NR_IRQS + 1];
+	struct platform_device_info info = { };
+	struct platform_device *pdev;
+	unsigned int i, n = 0, virq;
+	int ret;
+
+	memset(res, 0, sizeof(res));
+	for (i = 0; i < TS7800_FPGA_PC104_NR_IRQS; i++) {
+		virq = irq_create_mapping(domain, TS7800_FPGA_PC104_FIRST_IRQ + i);
+		if (!virq)
+			return -EINVAL;
+		ret = devm_add_action_or_reset(parent, ts7800_fpga_dispose_irq,
+					       (void *)(uintptr_t)virq);
+		if (ret)
+			return ret;
+		res[n].start = virq;
+		res[n].end = virq;
+		res[n].flags = IORESOURCE_IRQ;
+		res[n].name = names[i];
+		n++;
+	}
+	if (io)
+		res[n++] = *io;
+
+	info.parent = parent;
+	info.name = TS_CAN1_DEV_NAME;
+	info.id = PLATFORM_DEVID_NONE;
+	info.res = res;
+	info.num_res = n;
+	pdev = platform_device_register_full(&info);
+	if (IS_ERR(pdev))
+		return dev_err_probe(parent, PTR_ERR(pdev), "PC/104 bus device\n");
+	/* Registered after the mappings, so devres removes the child first. */
+	return devm_add_action_or_reset(parent, ts7800_fpga_remove_child, pdev);
+}
+EXPORT_SYMBOL_GPL(ts7800_fpga_add_pc104);

@@ -2,7 +2,7 @@
 /*
  * TS-7800 FPGA core: maps the FPGA window, exposes it to the child drivers as
  * a 16-bit regmap, demultiplexes the FPGA interrupt sources and registers the
- * TS-UART and DIO header children. Children never touch MMIO: they take the regmap with
+ * TS-UART, DIO header and PC/104 bus children. Children never touch MMIO: they take the regmap with
  * dev_get_regmap(parent) and their interrupt from their platform resources,
  * which lets the same child drivers run on the simulator (tests/sim/).
  *
@@ -17,15 +17,6 @@
 #include <linux/ts7800-fpga.h>
 
 #include "ts7800-fpga-core.h"
-
-static const struct regmap_config ts7800_fpga_regmap_config = {
-	.name		= "fpga",
-	.reg_bits	= 32,
-	.val_bits	= 16,
-	.reg_stride	= 2,
-	.max_register	= TS7800_FPGA_WINDOW_SIZE - 2,
-	.cache_type	= REGCACHE_NONE,
-};
 
 static int ts7800_fpga_probe(struct platform_device *pdev)
 {
@@ -66,7 +57,7 @@ static int ts7800_fpga_probe(struct platform_device *pdev)
 	if (ret)
 		return ret;
 
-	domain = ts7800_fpga_irq_setup(dev, fpga, doorbell, irq);
+	domain = ts7800_fpga_irq_setup(dev, map, doorbell, irq);
 	if (IS_ERR(domain))
 		return PTR_ERR(domain);
 
@@ -76,6 +67,13 @@ static int ts7800_fpga_probe(struct platform_device *pdev)
 	ret = ts7800_fpga_add_dio(dev);
 	if (ret)
 		return ret;
+	/* The PC/104 bus (TS-CAN1), if the board file gave its I/O window. */
+	res = platform_get_resource(pdev, IORESOURCE_MEM, 2);
+	if (res) {
+		ret = ts7800_fpga_add_pc104(dev, domain, res);
+		if (ret)
+			return ret;
+	}
 
 	dev_info(dev, "TS-7800 FPGA revision %u, %d TS-UARTs\n", rev, nports);
 	return 0;

@@ -5,6 +5,7 @@
 
 #include <linux/device.h>
 #include <linux/irqdomain.h>
+#include <linux/regmap.h>
 #include <linux/types.h>
 
 #define TS7800_FPGA_DRV_NAME	"ts7800-fpga"
@@ -12,7 +13,7 @@
 struct ts7800_fpga_irq;
 
 struct irq_domain *ts7800_fpga_irq_setup(struct device *dev,
-					 void __iomem *fpga,
+					 struct regmap *fpga,
 					 void __iomem *doorbell,
 					 int parent_irq);
 

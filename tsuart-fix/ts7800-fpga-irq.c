@@ -8,6 +8,11 @@
  * while it is enabled both in the doorbell mask and in the FPGA's own enable
  * mask at offset 0x204, so mask/unmask keep the two in step.
  *
+ * The FPGA's enable mask is reached through the window's regmap, 16 bits at
+ * a time like every FPGA register (docs/tsuart.md, "Access width"): source
+ * k lives in one half, so switching it is one read-modify-write of that
+ * half. The doorbell registers are the SoC's own, 32 bits wide.
+ *
  * Doorbell cause bits are cleared by writing 0; writing 1 leaves a bit alone
  * (derived from the vendor's code, see docs/tsuart.md), so ack writes ~bit
  * and never races with a new MSI for another source.
@@ -17,6 +22,7 @@
 #include <linux/irq.h>
 #include <linux/irqchip/chained_irq.h>
 #include <linux/irqdomain.h>
+#include <linux/regmap.h>
 #include <linux/spinlock.h>
 #include <linux/ts7800-fpga.h>
 
@@ -26,7 +32,7 @@
 #define DOORBELL_MASK	0x4
 
 struct ts7800_fpga_irq {
-	void __iomem *fpga;
+	struct regmap *fpga;
 	void __iomem *doorbell;
 	raw_spinlock_t lock;	/* read-modify-write of both mask registers */
 	struct irq_domain *domain;
@@ -37,21 +43,20 @@ struct ts7800_fpga_irq {
 static void ts7800_fpga_irq_update(struct irq_data *d, bool enable)
 {
 	struct ts7800_fpga_irq *fi = irq_data_get_irq_chip_data(d);
-	u32 bit = BIT(irqd_to_hwirq(d));
+	irq_hw_number_t hwirq = irqd_to_hwirq(d);
+	unsigned int half = hwirq < 16 ? TS7800_FPGA_IRQ_MASK_LO : TS7800_FPGA_IRQ_MASK_HI;
+	unsigned int fbit = BIT(hwirq % 16);
+	u32 bit = BIT(hwirq);
 	unsigned long flags;
-	u32 db, fpga;
+	u32 db;
 
 	raw_spin_lock_irqsave(&fi->lock, flags);
 	db = readl(fi->doorbell + DOORBELL_MASK);
-	fpga = readl(fi->fpga + TS7800_FPGA_IRQ_MASK_LO);
-	if (enable) {
+	if (enable)
 		db |= bit;
-		fpga |= bit;
-	} else {
+	else
 		db &= ~bit;
-		fpga &= ~bit;
-	}
-	writel(fpga, fi->fpga + TS7800_FPGA_IRQ_MASK_LO);
+	regmap_update_bits(fi->fpga, half, fbit, enable ? fbit : 0);
 	writel(db, fi->doorbell + DOORBELL_MASK);
 	raw_spin_unlock_irqrestore(&fi->lock, flags);
 }
@@ -109,12 +114,18 @@ static const struct irq_domain_ops ts7800_fpga_irq_domain_ops = {
 	.xlate	= irq_domain_xlate_onecell,
 };
 
+static void ts7800_fpga_irq_mask_all(struct regmap *fpga)
+{
+	regmap_write(fpga, TS7800_FPGA_IRQ_MASK_LO, 0);
+	regmap_write(fpga, TS7800_FPGA_IRQ_MASK_HI, 0);
+}
+
 static void ts7800_fpga_irq_teardown(void *data)
 {
 	struct ts7800_fpga_irq *fi = data;
 
 	irq_set_chained_handler_and_data(fi->parent_irq, NULL, NULL);
-	writel(0, fi->fpga + TS7800_FPGA_IRQ_MASK_LO);
+	ts7800_fpga_irq_mask_all(fi->fpga);
 	writel(0, fi->doorbell + DOORBELL_MASK);
 	irq_domain_remove(fi->domain);
 	irq_domain_free_fwnode(fi->fwnode);
@@ -123,14 +134,14 @@ static void ts7800_fpga_irq_teardown(void *data)
 /**
  * ts7800_fpga_irq_setup - demultiplex the doorbell into an irq domain
  * @dev: FPGA device (owns the devres)
- * @fpga: mapped FPGA window
+ * @fpga: the FPGA window's regmap
  * @doorbell: mapped doorbell cause/mask registers
  * @parent_irq: the SoC's doorbell interrupt
  *
  * Return: the domain (hwirq k = FPGA source k) or an ERR_PTR.
  */
 struct irq_domain *ts7800_fpga_irq_setup(struct device *dev,
-					 void __iomem *fpga,
+					 struct regmap *fpga,
 					 void __iomem *doorbell,
 					 int parent_irq)
 {
@@ -146,7 +157,7 @@ struct irq_domain *ts7800_fpga_irq_setup(struct device *dev,
 	raw_spin_lock_init(&fi->lock);
 
 	/* Start with every source off and nothing pending. */
-	writel(0, fpga + TS7800_FPGA_IRQ_MASK_LO);
+	ts7800_fpga_irq_mask_all(fpga);
 	writel(0, doorbell + DOORBELL_MASK);
 	writel(0, doorbell + DOORBELL_CAUSE);
 

@@ -32,6 +32,7 @@
 #include <linux/spinlock.h>
 #include <linux/string.h>
 #include <linux/ts-can1.h>
+#include <linux/ts7800-fpga.h>
 #include <linux/uaccess.h>
 
 #define SIM_DRV_NAME		"ts-can1-sim"
@@ -133,7 +134,6 @@ struct ts_can1_sim {
 	struct irq_work irq_work;
 	struct irq_domain *domain;
 	struct fwnode_handle *fwnode;
-	struct platform_device *child;
 	struct dentry *debugfs;
 };
 
@@ -538,11 +538,21 @@ static const struct regmap_config sim_io_regmap_config = {
 	.reg_bits	= 32,
 	.val_bits	= 8,
 	.max_register	= TS_CAN1_IO_SIZE - 1,
+	/* the bus rules of every PC/104 provider (include/linux/ts-can1.h) */
+	.readable_reg	= ts_can1_io_readable,
+	.writeable_reg	= ts_can1_io_readable,
+	.precious_reg	= ts_can1_io_precious,
 	.cache_type	= REGCACHE_NONE,
 	.fast_io	= true,		/* used from the interrupt handler */
 	.reg_read	= sim_io_read,
 	.reg_write	= sim_io_write,
 };
+
+/* The modelled part of the FPGA window: the row A/B pin function registers. */
+static bool sim_fpga_readable(struct device *dev, unsigned int reg)
+{
+	return reg >= TS7800_FPGA_PC104_ROWA_LO && reg <= TS7800_FPGA_PC104_ROWB_LO + 2;
+}
 
 static const struct regmap_config sim_fpga_regmap_config = {
 	.name		= "fpga",
@@ -550,6 +560,8 @@ static const struct regmap_config sim_fpga_regmap_config = {
 	.val_bits	= 16,
 	.reg_stride	= 2,
 	.max_register	= 0xffe,
+	.readable_reg	= sim_fpga_readable,
+	.writeable_reg	= sim_fpga_readable,
 	.cache_type	= REGCACHE_NONE,
 	.fast_io	= true,
 	.reg_read	= sim_fpga_read,
@@ -653,50 +665,21 @@ static const struct file_operations sim_inject_fops = {
 
 /* ---- device ------------------------------------------------------------- */
 
-static void sim_remove_domain(struct ts_can1_sim *sim)
+/* Runs last: the bus device (and its interrupt mappings) are gone by then. */
+static void sim_remove_domain(void *data)
 {
-	unsigned int i;
+	struct ts_can1_sim *sim = data;
 
-	for (i = 0; i < SIM_NR_LINES; i++)
-		irq_dispose_mapping(irq_find_mapping(sim->domain, SIM_FIRST_LINE + i));
+	irq_work_sync(&sim->irq_work);
 	irq_domain_remove(sim->domain);
 	irq_domain_free_fwnode(sim->fwnode);
 }
 
-static void sim_teardown(void *data)
+static void sim_remove_debugfs(void *data)
 {
 	struct ts_can1_sim *sim = data;
 
 	debugfs_remove_recursive(sim->debugfs);
-	platform_device_unregister(sim->child);
-	irq_work_sync(&sim->irq_work);
-	sim_remove_domain(sim);
-}
-
-static int sim_add_child(struct ts_can1_sim *sim)
-{
-	struct platform_device_info info = { };
-	struct resource res[SIM_NR_LINES];
-	static const char * const names[SIM_NR_LINES] = { "irq5", "irq6", "irq7" };
-	unsigned int i, virq;
-
-	memset(res, 0, sizeof(res));
-	for (i = 0; i < SIM_NR_LINES; i++) {
-		virq = irq_create_mapping(sim->domain, SIM_FIRST_LINE + i);
-		if (!virq)
-			return -EINVAL;
-		res[i].start = virq;
-		res[i].end = virq;
-		res[i].flags = IORESOURCE_IRQ;
-		res[i].name = names[i];
-	}
-	info.parent = sim->dev;
-	info.name = TS_CAN1_DEV_NAME;
-	info.id = PLATFORM_DEVID_NONE;
-	info.res = res;
-	info.num_res = ARRAY_SIZE(res);
-	sim->child = platform_device_register_full(&info);
-	return PTR_ERR_OR_ZERO(sim->child);
 }
 
 static int sim_probe(struct platform_device *pdev)
@@ -732,15 +715,17 @@ static int sim_probe(struct platform_device *pdev)
 		irq_domain_free_fwnode(sim->fwnode);
 		return -ENOMEM;
 	}
-	ret = sim_add_child(sim);
-	if (ret) {
-		sim_remove_domain(sim);
+	ret = devm_add_action_or_reset(dev, sim_remove_domain, sim);
+	if (ret)
 		return ret;
-	}
+	/* The bus device, created exactly as the FPGA core creates it. */
+	ret = ts7800_fpga_add_pc104(dev, sim->domain, NULL);
+	if (ret)
+		return ret;
 	sim->debugfs = debugfs_create_dir(SIM_DRV_NAME, NULL);
 	debugfs_create_file("state", 0444, sim->debugfs, sim, &sim_state_fops);
 	debugfs_create_file("inject", 0200, sim->debugfs, sim, &sim_inject_fops);
-	ret = devm_add_action_or_reset(dev, sim_teardown, sim);
+	ret = devm_add_action_or_reset(dev, sim_remove_debugfs, sim);
 	if (ret)
 		return ret;
 

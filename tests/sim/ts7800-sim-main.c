@@ -254,21 +254,10 @@ static void sim_remove_debugfs(void *data)
 	debugfs_remove_recursive(sim->debugfs);
 }
 
-static const struct regmap_config sim_regmap_config = {
-	.name		= "fpga",
-	.reg_bits	= 32,
-	.val_bits	= 16,
-	.reg_stride	= 2,
-	.max_register	= TS7800_FPGA_WINDOW_SIZE - 2,
-	.cache_type	= REGCACHE_NONE,
-	.fast_io	= true,		/* used from interrupt handlers */
-	.reg_read	= sim_reg_read,
-	.reg_write	= sim_reg_write,
-};
-
 static int sim_probe(struct platform_device *pdev)
 {
 	struct device *dev = &pdev->dev;
+	struct regmap_config map_config;
 	struct ts7800_sim *sim;
 	struct regmap *map;
 	unsigned int n;
@@ -303,7 +292,13 @@ static int sim_probe(struct platform_device *pdev)
 	if (ret)
 		return ret;
 
-	map = devm_regmap_init(dev, NULL, sim, &sim_regmap_config);
+	/* The hardware core's register rules, over the model instead of MMIO. */
+	map_config = ts7800_fpga_regmap_config;
+	map_config.fast_io = true;	/* used from interrupt handlers */
+	map_config.use_raw_spinlock = false;	/* the model's lock is a spinlock_t */
+	map_config.reg_read = sim_reg_read;
+	map_config.reg_write = sim_reg_write;
+	map = devm_regmap_init(dev, NULL, sim, &map_config);
 	if (IS_ERR(map))
 		return PTR_ERR(map);
 

@@ -467,6 +467,16 @@ int sim_reg_write(void *context, unsigned int reg, unsigned int val)
 	struct sim_uart *u;
 	unsigned long flags;
 
+	/*
+	 * MODEL: the window takes 16-bit accesses only (docs/tsuart.md,
+	 * "Access width"); a wider value means a driver treats a register as
+	 * 32 bits wide.
+	 */
+	if (val > U16_MAX) {
+		dev_err_ratelimited(sim->dev, "write of 0x%x to 0x%03x refused: 16-bit accesses only\n",
+				    val, reg);
+		return -EINVAL;
+	}
 	spin_lock_irqsave(&sim->lock, flags);
 	switch (reg) {
 	case TS7800_FPGA_PC104_ROWC_LO:

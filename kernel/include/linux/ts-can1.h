@@ -14,6 +14,8 @@
 #include <linux/bits.h>
 #include <linux/types.h>
 
+struct device;
+
 /* Platform device the driver binds to (one per PC/104 bus). */
 #define TS_CAN1_DEV_NAME		"ts-can1"
 /*
@@ -74,6 +76,54 @@ static inline unsigned int ts_can1_jumper_line(u8 jumpers)
 /* ISA base of the SJA1000 for MODE window index 0..7. */
 #define TS_CAN1_WINDOW_BASES \
 	{ 0x100, 0x120, 0x180, 0x1a0, 0x200, 0x240, 0x280, 0x320 }
+
+/* SJA1000 (PeliCAN) registers that clear when read: IR, ALC, ECC. */
+#define TS_CAN1_SJA1000_IR		3
+#define TS_CAN1_SJA1000_ALC		11
+#define TS_CAN1_SJA1000_ECC		12
+
+/*
+ * The SJA1000 window index of ISA port @port, or -1 (outside all eight);
+ * @reg gets the register number inside the window.
+ */
+static inline int ts_can1_io_window(unsigned int port, unsigned int *reg)
+{
+	static const u16 bases[TS_CAN1_NR_WINDOWS] = TS_CAN1_WINDOW_BASES;
+	int i;
+
+	for (i = 0; i < TS_CAN1_NR_WINDOWS; i++) {
+		if (port >= bases[i] && port < bases[i] + TS_CAN1_SJA1000_SIZE) {
+			*reg = port - bases[i];
+			return i;
+		}
+	}
+	return -1;
+}
+
+/*
+ * Regmap rules of the PC/104 I/O space (for every provider of the bus):
+ * only the addresses a TS-CAN1 can decode are readable - the four PLD blocks
+ * and the eight SJA1000 windows; every other port may be another card's.
+ */
+static inline bool ts_can1_io_readable(struct device *dev, unsigned int port)
+{
+	unsigned int reg;
+
+	return (port >= TS_CAN1_PLD_BASE(0) &&
+		port < TS_CAN1_PLD_BASE(TS_CAN1_MAX_CARDS)) ||
+	       ts_can1_io_window(port, &reg) >= 0;
+}
+
+/* Reads with a side effect: a regmap debugfs dump must leave them alone. */
+static inline bool ts_can1_io_precious(struct device *dev, unsigned int port)
+{
+	unsigned int reg;
+
+	if (ts_can1_io_window(port, &reg) < 0)
+		return false;
+	return reg == TS_CAN1_SJA1000_IR || reg == TS_CAN1_SJA1000_ALC ||
+	       reg == TS_CAN1_SJA1000_ECC;
+}
 
 /* 16 MHz crystal; the SJA1000 runs its CAN clock at half of it. */
 #define TS_CAN1_XTAL_HZ			16000000

@@ -18,12 +18,21 @@
 struct device;
 struct irq_domain;
 struct regmap;
+struct regmap_config;
+struct resource;
+
+/* Name of the parent's regmap of the window (dev_get_regmap()). */
+#define TS7800_FPGA_REGMAP_NAME		"fpga"
 
 /* ID word at offset 0: bits 31..8 magic, bits 7..0 FPGA revision. */
 #define TS7800_FPGA_ID_LO		0x000
 #define TS7800_FPGA_ID_HI		0x002
 #define TS7800_FPGA_ID_MAGIC		0x00b480
 #define TS7800_FPGA_WINDOW_SIZE		0x1000
+
+/* PC/104 pin function registers of rows A..D (0x30, 0x34, 0x38, 0x3C). */
+#define TS7800_FPGA_PC104_FUNC_FIRST	0x030
+#define TS7800_FPGA_PC104_FUNC_LAST	0x03e
 
 /* PC/104 row C pin function register; bits 14..19 = pins C14..C19. */
 #define TS7800_FPGA_PC104_ROWC_LO	0x038
@@ -104,11 +113,14 @@ struct ts7800_uart_rate {
 };
 
 extern const struct ts7800_uart_rate ts7800_uart_rates[TS7800_UART_NR_CODES];
+extern const struct regmap_config ts7800_fpga_regmap_config;
 
 int ts7800_fpga_identify(struct regmap *map, u8 *revision);
 int ts7800_fpga_write_divisors(struct regmap *map);
 int ts7800_fpga_add_uarts(struct device *parent, struct regmap *map,
 			  struct irq_domain *domain);
 int ts7800_fpga_add_dio(struct device *parent);
+int ts7800_fpga_add_pc104(struct device *parent, struct irq_domain *domain,
+			  const struct resource *io);
 
 #endif /* _LINUX_TS7800_FPGA_H */
