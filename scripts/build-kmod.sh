@@ -27,6 +27,14 @@ armhf|armel)
 	;;
 esac
 [ -f "$kdir/Makefile" ] || die "no kernel build tree at $kdir (run: make deps)"
+# Debian's header packages lack the SJA1000 core's private header that
+# ts7800-can/sja1000-layout.c checks our copy of struct sja1000_priv against:
+# take it from linux-source-6.1, the source of those kernels.
+case $target in
+x86_64|armhf|armel)
+	make_args+=(SJA1000_SRC="$("$TOP/scripts/kernel-source.sh" drivers/net/can/sja1000/sja1000.h)")
+	;;
+esac
 
 out=$BUILD/kmod/$target
 mkdir -p "$out"

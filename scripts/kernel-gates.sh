@@ -4,7 +4,10 @@
 # kernel-gates.sh: the kernel quality gates of the project, on every kernel
 # source file (kernel/ tsuart-fix/ rs485proto/ i2c-max6615/ tests/kmod/ and
 # the other Kbuild dirs in KSRC_DIRS):
-#   1. W=1 builds without warnings for x86_64, armhf (armmp), armel (marvell);
+#   1. W=1 builds without warnings for x86_64, armhf (armmp), armel (marvell),
+#      each checking ts-can1's copy of struct sja1000_priv against that
+#      kernel's sja1000.h (ts7800-can/sja1000-layout.c), and a self-test that
+#      this check rejects an altered copy;
 #   2. checkpatch.pl --strict (from Debian's linux-source-6.1, extracted at
 #      build time) reports no error, warning or check;
 #   3. sparse (make C=2) reports nothing.
@@ -36,6 +39,14 @@ for t in x86_64 armhf armel; do
 		row "W=1 build, $t" fail "compiler warnings or errors (build/kmod/$t/build.log)"
 	fi
 done
+
+# 1b. the struct sja1000_priv layout check (part of every W=1 build above) can fail
+if out=$("$TOP/scripts/sja1000-layout-selftest.sh" 2>&1); then
+	row "struct sja1000_priv layout check rejects a changed copy" ok
+else
+	echo "$out" | tail -5
+	row "struct sja1000_priv layout check rejects a changed copy" fail "$(echo "$out" | tail -1)"
+fi
 
 # 2. checkpatch --strict
 src=$("$TOP/scripts/kernel-source.sh")
