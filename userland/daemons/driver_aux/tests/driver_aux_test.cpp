@@ -69,9 +69,15 @@ struct Rx {
   std::vector<lowlevel::data_fans_t> fans;
 };
 
+// The modules run on a manual clock: `d` of module time in 1 ms steps, each
+// followed by the loop passes that handle what became ready (memq delivers
+// on the pass after a publish). No wall-clock wait.
+module::ManualTimers clock_;
 void spin(module::Module& m, std::chrono::milliseconds d) {
-  const auto end = std::chrono::steady_clock::now() + d;
-  while (std::chrono::steady_clock::now() < end && m.run_once(5ms)) {
+  for (auto t = 0ms; t < d; t += 1ms) {
+    clock_.advance(1ms);
+    for (int i = 0; i < 3 && m.run_once(0ms); ++i) {
+    }
   }
 }
 
@@ -88,7 +94,7 @@ TEST_F(FakeHwmon, FindsTheDeviceByName) {
 
 TEST_F(FakeHwmon, PublishesTemperaturesAndFansWhileRunning) {
   auto cfg = config();
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   Rx rx;
   module::Subscription<lowlevel::data_temperature_t> st(m.lcm(), "LL_DATA_TEMPERATURE", [&](const auto& x) { rx.temps.push_back(x); });
   module::Subscription<lowlevel::data_fans_t> sf(m.lcm(), "LL_DATA_FANS", [&](const auto& x) { rx.fans.push_back(x); });
@@ -128,7 +134,7 @@ TEST_F(FakeHwmon, FanPolicyDrivesPwmAndGivesBackAutomaticMode) {
   EXPECT_EQ(cfg.policy.duty_for(40), 155);
   EXPECT_EQ(cfg.policy.duty_for(70), 255);
   {
-    module::Module m(cfg.module);
+    module::Module m(cfg.module, clock_);
     AuxDriver d(m, cfg);
     m.request_state(module::State::Run, false, "test");
     spin(m, 60ms);
@@ -144,7 +150,7 @@ TEST_F(FakeHwmon, FanPolicyDrivesPwmAndGivesBackAutomaticMode) {
 TEST_F(FakeHwmon, MissingDeviceIsADeviceExit) {
   auto cfg = config();
   cfg.hwmon_name = "max6616";
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   try {
     AuxDriver d(m, cfg);
     FAIL() << "no exception";
@@ -156,7 +162,7 @@ TEST_F(FakeHwmon, MissingDeviceIsADeviceExit) {
 
 TEST_F(FakeHwmon, MissingChannelIsADeviceExit) {
   auto cfg = config("  temperatures: [temp1, temp3]\n");
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   try {
     AuxDriver d(m, cfg);
     FAIL() << "no exception";
@@ -167,7 +173,7 @@ TEST_F(FakeHwmon, MissingChannelIsADeviceExit) {
 
 TEST_F(FakeHwmon, UnknownFanFailLineIsADeviceExit) {
   auto cfg = config("  fan_fail: {line: NO_SUCH_LINE_ADVEE}\n");
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   try {
     AuxDriver d(m, cfg);
     FAIL() << "no exception";
@@ -178,20 +184,22 @@ TEST_F(FakeHwmon, UnknownFanFailLineIsADeviceExit) {
 
 TEST_F(FakeHwmon, VanishedDeviceEndsTheModuleWithItsCode) {
   auto cfg = config();
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   AuxDriver d(m, cfg);
   // The driver unbound: its hwmon directory is gone.
   fs::remove_all(root_ / "hwmon1");
+  clock_.advance(20ms);  // the first poll at 50 Hz
   EXPECT_EQ(m.run(), 0x22);
 }
 
 TEST_F(FakeHwmon, UnreadableAttributeEndsTheModuleWithItsCode) {
   auto cfg = config();
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   AuxDriver d(m, cfg);
   // A read error other than ENODATA (here EISDIR) is a device failure.
   fs::remove(root_ / "hwmon1/temp1_input");
   fs::create_directory(root_ / "hwmon1/temp1_input");
+  clock_.advance(20ms);
   EXPECT_EQ(m.run(), 0x22);
 }
 
