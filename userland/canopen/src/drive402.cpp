@@ -31,7 +31,7 @@ Drive402::Drive402(Master& master, DriveConfig cfg)
     : master_(master),
       cfg_(std::move(cfg)),
       axis_(cfg_.axis, [&master] { return master.now(); }, [this](std::uint16_t) { send_control(); }) {
-  master_.attach(this);
+  service_ = master_.attach(*this);
   master_.sdo(cfg_.node).set_timeout(cfg_.sdo_timeout);
   emcy_listener_ = master_.add_emcy_listener([this](const Emcy& e) {
     if (e.node != cfg_.node) return;
@@ -41,19 +41,18 @@ Drive402::Drive402(Master& master, DriveConfig cfg)
     if (u.node != cfg_.node) return;
     if (u.event == HeartbeatEvent::kLost) emit({DriveEventKind::kHeartbeatLost, cfg_.node, 0, cfg_.name + ": heartbeat lost"});
     if (u.event == HeartbeatEvent::kResumed) emit({DriveEventKind::kHeartbeatResumed, cfg_.node, 0, cfg_.name + ": heartbeat resumed"});
-    if (u.event == HeartbeatEvent::kBootUp && booted_) {
+    if (u.event != HeartbeatEvent::kBootUp) return;
+    if (booted_) {
       // Its PDO configuration and heartbeat setup are gone: it must boot again.
       booted_ = false;
       emit({DriveEventKind::kRebooted, cfg_.node, 0, cfg_.name + ": drive rebooted"});
+    } else if (booting_) {
+      // Whatever this boot wrote so far is gone: it fails, its pending
+      // answers are dropped, and the owner boots again.
+      boot_lifetime_.renew();
+      boot_failed("drive rebooted during boot", make_error_code(AxisError::kCancelled));
     }
   });
-}
-
-Drive402::~Drive402() {
-  master_.detach(this);
-  master_.remove_listener(emcy_listener_);
-  master_.remove_listener(hb_listener_);
-  if (status_sub_) master_.unsubscribe(status_sub_);
 }
 
 void Drive402::emit(DriveEvent e) {
@@ -64,6 +63,7 @@ void Drive402::boot_failed(const std::string& why, std::error_code ec) {
   char head[64];
   std::snprintf(head, sizeof head, "%s (node %u): boot failed: ", cfg_.name.c_str(), cfg_.node);
   boot_error_ = head + why + ": " + ec.message() + (mismatch_.empty() ? "" : " (" + mismatch_ + ")");
+  booting_ = false;
   auto done = std::move(boot_done_);
   boot_done_ = nullptr;
   if (done) done(ec);
@@ -72,7 +72,7 @@ void Drive402::boot_failed(const std::string& why, std::error_code ec) {
 void Drive402::configure_pdo(PdoKind kind, unsigned number, const std::vector<PdoEntry>& need,
                              std::function<void(std::error_code, const PdoMapping&)> done) {
   SdoClient& sdo = master_.sdo(cfg_.node);
-  read_pdo_mapping(sdo, kind, number, [this, kind, number, need, done, &sdo](std::error_code ec, const PdoMapping& m) {
+  read_pdo_mapping(sdo, kind, number, boot_lifetime_.wrap([this, kind, number, need, done, &sdo](std::error_code ec, const PdoMapping& m) {
     if (ec) return done(ec, m);
     PdoMapping wanted = m;
     if (m.entries != need) {
@@ -90,8 +90,9 @@ void Drive402::configure_pdo(PdoKind kind, unsigned number, const std::vector<Pd
     wanted.transmission_type = 255;
     std::vector<SdoWrite> writes = m.entries != need ? pdo_remap_writes(wanted)
                                                      : std::vector<SdoWrite>{pdo_enable_write(wanted, true)};
-    run_sdo_writes(sdo, std::move(writes), [done, wanted](const SdoSequenceResult& r) { done(r.error, wanted); });
-  });
+    run_sdo_writes(sdo, std::move(writes),
+                   boot_lifetime_.wrap([done, wanted](const SdoSequenceResult& r) { done(r.error, wanted); }));
+  }));
 }
 
 void Drive402::boot(Done done) {
@@ -99,10 +100,9 @@ void Drive402::boot(Done done) {
   boot_error_.clear();
   mismatch_.clear();
   booted_ = false;
-  if (status_sub_) {
-    master_.unsubscribe(status_sub_);
-    status_sub_ = 0;
-  }
+  booting_ = true;
+  boot_lifetime_.renew();  // answers of an earlier boot are not this one's
+  status_sub_.reset();
   SdoClient& sdo = master_.sdo(cfg_.node);
   master_.nmt(NmtCommand::kEnterPreOperational, cfg_.node);
   std::vector<SdoWrite> hb;
@@ -110,7 +110,7 @@ void Drive402::boot(Done done) {
   if (cfg_.master_heartbeat_timeout_ms && master_.heartbeat_period().count() > 0)
     hb.push_back(SdoWrite::of<std::uint32_t>(
         0x1016, 1, (static_cast<std::uint32_t>(master_.config().node_id) << 16) | cfg_.master_heartbeat_timeout_ms));
-  run_sdo_writes(sdo, std::move(hb), [this](const SdoSequenceResult& r) {
+  run_sdo_writes(sdo, std::move(hb), boot_lifetime_.wrap([this](const SdoSequenceResult& r) {
     if (r.error) return boot_failed("heartbeat configuration", r.error);
     master_.heartbeat_consumer().monitor(cfg_.node, std::chrono::milliseconds(cfg_.heartbeat_ms) * cfg_.heartbeat_tolerance);
     configure_pdo(PdoKind::kRpdo, cfg_.control_rpdo, cfg_.control_entries, [this](std::error_code ec, const PdoMapping& m) {
@@ -126,18 +126,19 @@ void Drive402::boot(Done done) {
         if (!status_codec_) return boot_failed("status TPDO codec", make_error_code(AxisError::kPdoMismatch));
         status_sub_ = master_.subscribe(status_codec_->can_id(), [this](const CanFrame& f) { on_status(f); });
         // Reading the mode display once tells set_mode() where we start.
-        master_.sdo(cfg_.node).read<std::int8_t>(0x6061, 0, [this](std::error_code ec3, std::int8_t m) {
+        master_.sdo(cfg_.node).read<std::int8_t>(0x6061, 0, boot_lifetime_.wrap([this](std::error_code ec3, std::int8_t m) {
           if (ec3) return boot_failed("modes of operation display", ec3);
           mode_ = static_cast<cia402::Mode>(m);
           master_.nmt(NmtCommand::kStart, cfg_.node);
           booted_ = true;
+          booting_ = false;
           auto d = std::move(boot_done_);
           boot_done_ = nullptr;
           if (d) d({});
-        });
+        }));
       });
     });
-  });
+  }));
 }
 
 void Drive402::send_control() {
@@ -212,16 +213,17 @@ void Drive402::set_mode(cia402::Mode mode, Done done) {
   motion_deadline_ = master_.now() + cfg_.mode_timeout;
   // Some drives ignore a mode change while halt is set (ros2_canopen #234).
   axis_.set_bits(cw::kHalt | cw::kNewSetPoint, 0);
-  master_.sdo(cfg_.node).write<std::int8_t>(0x6060, 0, static_cast<std::int8_t>(mode), [this](const SdoResult& r) {
-    if (motion_ != Motion::kModeWait) return;
-    if (!r.ok()) return finish_motion(r.error());
-    read_mode_display();
-  });
+  master_.sdo(cfg_.node).write<std::int8_t>(0x6060, 0, static_cast<std::int8_t>(mode),
+                                            lifetime_.wrap([this](const SdoResult& r) {
+                                              if (motion_ != Motion::kModeWait) return;
+                                              if (!r.ok()) return finish_motion(r.error());
+                                              read_mode_display();
+                                            }));
 }
 
 void Drive402::read_mode_display() {
   mode_read_pending_ = true;
-  master_.sdo(cfg_.node).read<std::int8_t>(0x6061, 0, [this](std::error_code ec, std::int8_t m) {
+  master_.sdo(cfg_.node).read<std::int8_t>(0x6061, 0, lifetime_.wrap([this](std::error_code ec, std::int8_t m) {
     mode_read_pending_ = false;
     if (motion_ != Motion::kModeWait) return;
     if (ec) return finish_motion(ec);
@@ -230,7 +232,7 @@ void Drive402::read_mode_display() {
       return finish_motion({});
     }
     next_mode_read_ = master_.now() + kModePollInterval;
-  });
+  }));
 }
 
 void Drive402::move_to(std::int32_t position, bool relative, Done done) {

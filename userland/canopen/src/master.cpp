@@ -39,15 +39,12 @@ void Master::handle(const CanFrame& f) {
   } else if (guarding_.handle(f) || hb_consumer_.handle(f)) {
     return;
   } else if (auto e = decode_emcy(f)) {
-    auto listeners = emcy_listeners_;  // a listener may remove itself
-    for (auto& [id, cb] : listeners) cb(*e);
+    registry_->emcy.call(*e);
     return;
   }
-  auto it = pdo_listeners_.find(f.id);
-  if (it != pdo_listeners_.end() && !f.rtr && !it->second.empty()) {
-    // Copy: a listener may unsubscribe while we iterate.
-    auto subs = it->second;
-    for (auto& s : subs) s.cb(f);
+  auto it = registry_->pdo.find(f.id);
+  if (it != registry_->pdo.end() && !f.rtr && !it->second.empty()) {
+    it->second.call(f);
     return;
   }
   if (fallback_) fallback_(f);
@@ -59,8 +56,7 @@ void Master::on_heartbeat(const HeartbeatUpdate& u) {
   // while its boot-up waited in our receive queue did), and some nodes repeat
   // their boot-up without resetting. A transfer the node lost ends with its
   // abort or the step timeout; the drivers re-boot the node on this event.
-  auto listeners = hb_listeners_;  // a listener may remove itself
-  for (auto& [id, cb] : listeners) cb(u);
+  registry_->heartbeat.call(u);
 }
 
 void Master::poll() {
@@ -70,9 +66,12 @@ void Master::poll() {
   hb_producer_.poll();
   sync_.poll();
   time_.poll();
-  // Copy: a service may detach another one from inside poll().
-  auto services = services_;
-  for (TimedService* s : services) s->poll();
+  // A service may end another one's registration (and destroy it) from
+  // inside poll(): each is looked up again before it is polled.
+  std::vector<std::uint64_t> ids;
+  for (const auto& [id, s] : registry_->services) ids.push_back(id);
+  for (std::uint64_t id : ids)
+    if (auto it = registry_->services.find(id); it != registry_->services.end()) it->second->poll();
 }
 
 std::optional<TimePoint> Master::next_deadline() const {
@@ -86,7 +85,7 @@ std::optional<TimePoint> Master::next_deadline() const {
   take(hb_producer_.deadline());
   take(sync_.deadline());
   take(time_.deadline());
-  for (const TimedService* s : services_) take(s->deadline());
+  for (const auto& [id, s] : registry_->services) take(s->deadline());
   return d;
 }
 
@@ -100,31 +99,32 @@ SdoClient& Master::sdo(std::uint8_t node) {
 
 void Master::send_time(std::chrono::system_clock::time_point t) { send_(time_of_day_frame(t)); }
 
-Master::ListenerId Master::add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb) {
-  hb_listeners_.emplace_back(next_id_, std::move(cb));
-  return next_id_++;
+template <typename Remove>
+Registration Master::registration(Remove remove) {
+  return Registration([weak = std::weak_ptr<Registry>(registry_), remove] {
+    if (auto r = weak.lock()) remove(*r);
+  });
 }
 
-Master::ListenerId Master::add_emcy_listener(std::function<void(const Emcy&)> cb) {
-  emcy_listeners_.emplace_back(next_id_, std::move(cb));
-  return next_id_++;
+Registration Master::add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb) {
+  const auto id = registry_->heartbeat.add(std::move(cb));
+  return registration([id](Registry& r) { r.heartbeat.remove(id); });
 }
 
-void Master::remove_listener(ListenerId id) {
-  std::erase_if(hb_listeners_, [id](const auto& l) { return l.first == id; });
-  std::erase_if(emcy_listeners_, [id](const auto& l) { return l.first == id; });
-  unsubscribe(id);
+Registration Master::add_emcy_listener(std::function<void(const Emcy&)> cb) {
+  const auto id = registry_->emcy.add(std::move(cb));
+  return registration([id](Registry& r) { r.emcy.remove(id); });
 }
 
-Master::ListenerId Master::subscribe(std::uint32_t can_id, FrameListener cb) {
-  const ListenerId id = next_id_++;
-  pdo_listeners_[can_id].push_back({id, std::move(cb)});
-  return id;
+Registration Master::subscribe(std::uint32_t can_id, FrameListener cb) {
+  const auto id = registry_->pdo[can_id].add(std::move(cb));
+  return registration([can_id, id](Registry& r) { r.pdo[can_id].remove(id); });
 }
 
-void Master::unsubscribe(ListenerId id) {
-  for (auto& [can_id, subs] : pdo_listeners_)
-    std::erase_if(subs, [id](const Subscription& s) { return s.id == id; });
+Registration Master::attach(TimedService& s) {
+  const auto id = registry_->next_service++;
+  registry_->services.emplace(id, &s);
+  return registration([id](Registry& r) { r.services.erase(id); });
 }
 
 }  // namespace advee::canopen

@@ -4,11 +4,7 @@
 namespace advee::canopen {
 
 MotionWatchdog::MotionWatchdog(Master& master, Duration timeout, std::function<void()> on_expire)
-    : master_(master), timeout_(timeout), on_expire_(std::move(on_expire)) {
-  master_.attach(this);
-}
-
-MotionWatchdog::~MotionWatchdog() { master_.detach(this); }
+    : master_(master), timeout_(timeout), on_expire_(std::move(on_expire)), service_(master_.attach(*this)) {}
 
 void MotionWatchdog::feed() {
   last_ = master_.now();

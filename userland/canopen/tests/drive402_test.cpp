@@ -259,6 +259,34 @@ TEST_F(DriveTest, DestroyedDriverNoLongerListens) {
   EXPECT_TRUE(events.empty());
 }
 
+TEST_F(DriveTest, DriverDestroyedDuringBootLeavesNoCallbackBehind) {
+  {
+    Drive402 epos(master, epos_config());  // on the stack: ASan reports any later use
+    epos.boot(nullptr);  // its first SDO request is on the bus, the answer not yet back
+  }
+  run_for(2s);  // their answers (and timeouts) must not reach the destroyed driver
+  EXPECT_FALSE(master.sdo(1).busy());
+  auto again = make(epos_config());
+  EXPECT_FALSE(wait([&](auto d) { again->boot(d); }));
+}
+
+TEST_F(DriveTest, RebootDuringBootFailsThatBootAndTheNextOneSucceeds) {
+  auto epos = make(epos_config());
+  std::optional<std::error_code> r;
+  epos_sim.sdo().faults().response_delay = 5ms;
+  epos->boot([&](std::error_code ec) { r = ec; });
+  run_for(12ms);  // the first steps of the boot
+  ASSERT_FALSE(r);
+  epos_sim.sdo().faults().response_delay = 0ms;
+  master.nmt(NmtCommand::kResetNode, 1);
+  for (int i = 0; i < 3000 && !r; ++i) tick();
+  ASSERT_TRUE(r);
+  EXPECT_EQ(*r, make_error_code(AxisError::kCancelled));
+  EXPECT_NE(epos->boot_error().find("drive rebooted during boot"), std::string::npos) << epos->boot_error();
+  EXPECT_FALSE(wait([&](auto d) { epos->boot(d); }));
+  EXPECT_TRUE(epos->booted());
+}
+
 TEST_F(DriveTest, MotionWatchdogQuickStopsAfterOneSecondWithoutCommands) {
   auto epos = make(epos_config());
   ASSERT_FALSE(wait([&](auto d) { epos->boot(d); }));

@@ -20,9 +20,10 @@ class EngineTest : public testing::Test {
   std::size_t node_port = bus.attach([this](const CanFrame& f) { seen.push_back(f); });
   Master master{MasterConfig{0x7F, 100ms, {}}, bus.sender(master_port), clock.fn()};
   std::vector<HeartbeatUpdate> hb;
+  Registration hb_listener;
 
   void SetUp() override {
-    master.add_heartbeat_listener([this](const HeartbeatUpdate& u) { hb.push_back(u); });
+    hb_listener = master.add_heartbeat_listener([this](const HeartbeatUpdate& u) { hb.push_back(u); });
   }
   void from_node(const CanFrame& f) {
     bus.sender(node_port)(f);
@@ -177,7 +178,7 @@ TEST(TimeProducerTest, PeriodicTimeCarriesTheWallClock) {
 
 TEST_F(EngineTest, EmcyIsDecodedAndSyncIsNotMistakenForIt) {
   std::vector<Emcy> emcy;
-  master.add_emcy_listener([&](const Emcy& e) { emcy.push_back(e); });
+  const Registration listener = master.add_emcy_listener([&](const Emcy& e) { emcy.push_back(e); });
   from_node(make_frame(0x080, {1}));
   from_node(make_frame(0x081, {0x10, 0x42, 0x09, 1, 2, 3, 4, 5}));
   ASSERT_EQ(emcy.size(), 1u);
@@ -192,12 +193,12 @@ TEST_F(EngineTest, EmcyIsDecodedAndSyncIsNotMistakenForIt) {
 
 TEST_F(EngineTest, PdoListenersGetTheirCobIdOnly) {
   int a = 0, b = 0, other = 0;
-  auto id = master.subscribe(0x181, [&](const CanFrame&) { ++a; });
-  master.subscribe(0x181, [&](const CanFrame&) { ++b; });
+  auto sub_a = master.subscribe(0x181, [&](const CanFrame&) { ++a; });
+  const auto sub_b = master.subscribe(0x181, [&](const CanFrame&) { ++b; });
   master.set_fallback_listener([&](const CanFrame&) { ++other; });
   from_node(make_frame(0x181, {0x37, 0x02}));
   from_node(make_frame(0x182, {0x37, 0x02}));
-  master.unsubscribe(id);
+  sub_a.reset();
   from_node(make_frame(0x181, {0x37, 0x02}));
   EXPECT_EQ(a, 1);
   EXPECT_EQ(b, 2);
@@ -249,6 +250,55 @@ TEST_F(EngineTest, NextDeadlineIsTheEarliestOfAllTimers) {
   master.sync().start(30ms);
   master.sdo(4).upload(0x1000, 0, nullptr);  // 100 ms SDO timeout
   EXPECT_EQ(*master.next_deadline(), clock.now() + 30ms);
+}
+
+TEST(RegistrationTest, EndsWithItsHandleAndMayOutliveTheMaster) {
+  ManualClock clock;
+  auto master = std::make_unique<Master>(MasterConfig{}, [](const CanFrame&) {}, clock.fn());
+  int a = 0, b = 0;
+  Registration ra, rb;
+  // A removes B while the list is being called: B is not called any more.
+  ra = master->add_emcy_listener([&](const Emcy&) {
+    ++a;
+    rb.reset();
+  });
+  rb = master->add_emcy_listener([&](const Emcy&) { ++b; });
+  master->handle(make_frame(0x081, {0x10, 0x42, 0x09, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(a, 1);
+  EXPECT_EQ(b, 0);
+  ra.reset();
+  master->handle(make_frame(0x081, {0x10, 0x42, 0x09, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(a, 1);
+  Registration late = master->subscribe(0x181, [](const CanFrame&) {});
+  master.reset();
+  late.reset();  // after the master: nothing to do, nothing touched (ASan)
+}
+
+TEST(RegistrationTest, ServiceEndedByAnotherServiceIsNotPolledAgain) {
+  ManualClock clock;
+  Master master(MasterConfig{}, [](const CanFrame&) {}, clock.fn());
+  struct Service final : TimedService {
+    std::function<void()> on_poll;
+    int polls = 0;
+    void poll() override {
+      ++polls;
+      if (on_poll) on_poll();
+    }
+    std::optional<TimePoint> deadline() const override { return std::nullopt; }
+  };
+  auto first = std::make_unique<Service>();
+  auto second = std::make_unique<Service>();
+  Registration r1 = master.attach(*first);
+  auto r2 = std::make_unique<Registration>(master.attach(*second));
+  first->on_poll = [&] {
+    r2.reset();  // ends the registration and then the service
+    second.reset();
+  };
+  master.poll();  // ASan: second must not be polled after it is gone
+  EXPECT_EQ(first->polls, 1);
+  r1.reset();
+  master.poll();
+  EXPECT_EQ(first->polls, 1);
 }
 
 }  // namespace

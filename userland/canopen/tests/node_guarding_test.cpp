@@ -87,7 +87,7 @@ TEST(NodeGuardingWithDriveTest, SimulatedDriveAnswersAndSilenceIsDetected) {
   drive = std::make_unique<sim::SimulatedDrive>(sim::DriveSimConfig{3, sim::DriveProfile::kIcla}, bus.sender(dp),
                                                 clock.fn());
   std::vector<HeartbeatUpdate> events;
-  master->add_heartbeat_listener([&](const HeartbeatUpdate& u) { events.push_back(u); });
+  const Registration listener = master->add_heartbeat_listener([&](const HeartbeatUpdate& u) { events.push_back(u); });
   drive->power_on();
   bus.deliver();
   events.clear();

@@ -150,7 +150,7 @@ TEST_F(PdoOnDriveTest, SafeRemapIsAcceptedAndTakesEffect) {
   // In operational the drive now sends 7-byte TPDO3 frames the codec decodes.
   auto codec = PdoCodec::build(*got);
   std::optional<std::uint64_t> sw;
-  master.subscribe(0x381, [&](const CanFrame& f) { sw = codec->get_unsigned(f, 0x6041, 0); });
+  const Registration sub = master.subscribe(0x381, [&](const CanFrame& f) { sw = codec->get_unsigned(f, 0x6041, 0); });
   master.nmt(NmtCommand::kStart, 1);
   settle();
   ASSERT_TRUE(sw);

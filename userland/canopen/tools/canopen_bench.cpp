@@ -35,8 +35,8 @@ double cpu_seconds() {
 // Fires `fn` once at a time point on the master's clock.
 class OneShot final : public TimedService {
  public:
-  explicit OneShot(Master& m) : m_(m) { m_.attach(this); }
-  ~OneShot() override { m_.detach(this); }
+  explicit OneShot(Master& m) : m_(m) { reg_ = m_.attach(*this); }
+  Registration reg_;
   void at(TimePoint t, std::function<void()> fn) {
     when_ = t;
     fn_ = std::move(fn);
@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
         waiting = true;
         master.send(make_frame(cob::kRpdoBase[0] + n, {static_cast<std::uint8_t>(word), 0}));
       };
-      master.subscribe(cob::kTpdoBase[0] + n, [&](const CanFrame& f) {
+      const Registration tpdo = master.subscribe(cob::kTpdoBase[0] + n, [&](const CanFrame& f) {
         if (!waiting || f.len < 2) return;
         const auto s = cia402::decode(static_cast<std::uint16_t>(f.data[0] | (f.data[1] << 8)));
         const auto want = word == 0x0006 ? cia402::State::kReadyToSwitchOn : cia402::State::kSwitchOnDisabled;

@@ -30,8 +30,8 @@ class Script final : public TimedService {
   using Done = std::function<void(std::error_code)>;
   using Step = std::function<void(Done)>;
 
-  explicit Script(Master& m) : master_(m) { master_.attach(this); }
-  ~Script() override { master_.detach(this); }
+  explicit Script(Master& m) : master_(m) { reg_ = master_.attach(*this); }
+  Registration reg_;
 
   Script& then(std::string name, Step s) {
     steps_.push_back({std::move(name), std::move(s)});
@@ -90,9 +90,9 @@ class CommandStream final : public TimedService {
  public:
   CommandStream(Master& m, Duration period, std::function<void()> send)
       : master_(m), period_(period), send_(std::move(send)) {
-    master_.attach(this);
+    reg_ = master_.attach(*this);
   }
-  ~CommandStream() override { master_.detach(this); }
+  Registration reg_;
   void start() {
     running_ = true;
     next_ = master_.now();
@@ -333,8 +333,8 @@ int main(int argc, char** argv) {
       Master& m;
       TimePoint at;
       EventLoop& loop;
-      GiveUp(Master& mm, TimePoint t, EventLoop& l) : m(mm), at(t), loop(l) { m.attach(this); }
-      ~GiveUp() override { m.detach(this); }
+      GiveUp(Master& mm, TimePoint t, EventLoop& l) : m(mm), at(t), loop(l) { reg_ = m.attach(*this); }
+      Registration reg_;
       void poll() override {
         if (m.now() >= at) {
           std::printf("not ok - scenario timed out\n");

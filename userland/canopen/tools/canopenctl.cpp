@@ -201,8 +201,8 @@ int main(int argc, char** argv) {
       Master& m;
       std::function<void()> fn;
       TimePoint next;
-      StatusPoller(Master& mm, std::function<void()> f) : m(mm), fn(std::move(f)), next(mm.now()) { m.attach(this); }
-      ~StatusPoller() override { m.detach(this); }
+      StatusPoller(Master& mm, std::function<void()> f) : m(mm), fn(std::move(f)), next(mm.now()) { reg_ = m.attach(*this); }
+      Registration reg_;
       void poll() override {
         if (m.now() < next) return;
         next = TimePoint::max();

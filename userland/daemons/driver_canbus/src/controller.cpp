@@ -55,12 +55,10 @@ DriveController::DriveController(canopen::Master& master, ControllerConfig cfg, 
                    " ms: propulsion quick stop");
         quick_stop_propulsion("command timeout");
       }) {
-  master_.attach(this);
+  service_ = master_.attach(*this);
   epos_.drive().on_event([this](const DriveEvent& e) { on_drive_event(prop_, e); });
   icla_.drive().on_event([this](const DriveEvent& e) { on_drive_event(steer_, e); });
 }
-
-DriveController::~DriveController() { master_.detach(this); }
 
 bool DriveController::ready() const { return started_ && prop_.online && steer_.online; }
 

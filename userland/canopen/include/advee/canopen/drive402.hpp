@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "advee/canopen/axis402.hpp"
+#include "advee/canopen/lifetime.hpp"
 #include "advee/canopen/master.hpp"
 #include "advee/canopen/pdo.hpp"
 
@@ -54,7 +55,6 @@ class Drive402 final : public TimedService {
   using Done = std::function<void(std::error_code)>;
 
   Drive402(Master& master, DriveConfig cfg);
-  ~Drive402() override;
   Drive402(const Drive402&) = delete;
   Drive402& operator=(const Drive402&) = delete;
 
@@ -116,10 +116,12 @@ class Drive402 final : public TimedService {
   std::optional<PdoCodec> status_codec_;
   CanFrame control_frame_;
   std::optional<CanFrame> last_status_;
-  Master::ListenerId status_sub_ = 0;
-  Master::ListenerId emcy_listener_ = 0;
-  Master::ListenerId hb_listener_ = 0;
+  Registration service_;
+  Registration status_sub_;
+  Registration emcy_listener_;
+  Registration hb_listener_;
   bool booted_ = false;
+  bool booting_ = false;
   Done boot_done_;
   std::string boot_error_;
   std::string mismatch_;
@@ -132,6 +134,12 @@ class Drive402 final : public TimedService {
   bool mode_read_pending_ = false;
   std::uint64_t status_frames_ = 0;
   std::vector<std::function<void(const DriveEvent&)>> listeners_;
+  // Every SDO completion this driver queues is wrapped with one of these: the
+  // SdoClient belongs to the master and may answer after the driver is gone.
+  // The boot's is renewed by boot() and by a reboot during boot, so the
+  // answers of an abandoned boot are dropped too.
+  Lifetime lifetime_;
+  Lifetime boot_lifetime_;
 };
 
 }  // namespace advee::canopen

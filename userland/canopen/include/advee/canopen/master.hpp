@@ -17,12 +17,16 @@
 #include "advee/canopen/emcy.hpp"
 #include "advee/canopen/frame.hpp"
 #include "advee/canopen/heartbeat.hpp"
+#include "advee/canopen/listener_list.hpp"
 #include "advee/canopen/nmt.hpp"
 #include "advee/canopen/node_guarding.hpp"
 #include "advee/canopen/sdo_client.hpp"
 #include "advee/canopen/sync.hpp"
+#include "advee/registration.hpp"
 
 namespace advee::canopen {
+
+using advee::Registration;
 
 // Something with its own timers that runs on the master's clock (an axis, a
 // drive driver); the owner of the master polls it with the master.
@@ -45,7 +49,6 @@ struct MasterConfig {
 class Master {
  public:
   using FrameListener = std::function<void(const CanFrame&)>;
-  using ListenerId = std::uint64_t;
 
   Master(MasterConfig cfg, FrameSender send, NowFn now, WallClockFn wall = [] { return std::chrono::system_clock::now(); });
   Master(const Master&) = delete;
@@ -82,22 +85,21 @@ class Master {
   void send_time(std::chrono::system_clock::time_point t);
   TimeProducer& time_producer() { return time_; }
 
-  // Listeners are removed with remove_listener(id) before their owner dies.
-  ListenerId add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb);
-  ListenerId add_emcy_listener(std::function<void(const Emcy&)> cb);
-  void remove_listener(ListenerId id);
+  // Each registration lasts until its Registration is destroyed or reset();
+  // keep it in the object whose `this` the callback captures. It may outlive
+  // the master. A callback may end registrations (its own too) while it runs.
+  [[nodiscard]] Registration add_heartbeat_listener(std::function<void(const HeartbeatUpdate&)> cb);
+  [[nodiscard]] Registration add_emcy_listener(std::function<void(const Emcy&)> cb);
   // Frames with this CAN-ID (a device's TPDO) go to cb.
-  ListenerId subscribe(std::uint32_t can_id, FrameListener cb);
-  void unsubscribe(ListenerId id);
+  [[nodiscard]] Registration subscribe(std::uint32_t can_id, FrameListener cb);
   // Any frame not consumed by a protocol object (monitors, tools).
   void set_fallback_listener(FrameListener cb) { fallback_ = std::move(cb); }
   // Sees every received frame before any protocol object does (monitors).
   void set_observer(FrameListener cb) { observer_ = std::move(cb); }
 
-  // Services are polled by poll() and counted in next_deadline(); they must
-  // detach before they are destroyed.
-  void attach(TimedService* s) { services_.push_back(s); }
-  void detach(TimedService* s) { std::erase(services_, s); }
+  // The service is polled by poll() and counted in next_deadline() while the
+  // Registration lives (a member of the service).
+  [[nodiscard]] Registration attach(TimedService& s);
 
   void send(const CanFrame& f) { send_(f); }
   const MasterConfig& config() const { return cfg_; }
@@ -114,17 +116,21 @@ class Master {
   HeartbeatProducer hb_producer_;
   SyncProducer sync_;
   TimeProducer time_;
-  std::vector<std::pair<ListenerId, std::function<void(const HeartbeatUpdate&)>>> hb_listeners_;
-  std::vector<std::pair<ListenerId, std::function<void(const Emcy&)>>> emcy_listeners_;
-  struct Subscription {
-    ListenerId id;
-    FrameListener cb;
+  // Shared with the Registrations' cancel functions (through weak_ptr), so
+  // that a Registration may outlive the master.
+  struct Registry {
+    ListenerList<const HeartbeatUpdate&> heartbeat;
+    ListenerList<const Emcy&> emcy;
+    std::unordered_map<std::uint32_t, ListenerList<const CanFrame&>> pdo;
+    std::map<std::uint64_t, TimedService*> services;
+    std::uint64_t next_service = 1;
   };
-  std::unordered_map<std::uint32_t, std::vector<Subscription>> pdo_listeners_;
-  ListenerId next_id_ = 1;
+  template <typename Remove>
+  Registration registration(Remove remove);
+
+  std::shared_ptr<Registry> registry_ = std::make_shared<Registry>();
   FrameListener fallback_;
   FrameListener observer_;
-  std::vector<TimedService*> services_;
   NmtState nmt_state_ = NmtState::kPreOperational;
   bool booted_up_ = false;  // the boot-up message went out
 };

@@ -14,7 +14,6 @@ namespace advee::canopen {
 class MotionWatchdog final : public TimedService {
  public:
   MotionWatchdog(Master& master, Duration timeout, std::function<void()> on_expire);
-  ~MotionWatchdog() override;
   MotionWatchdog(const MotionWatchdog&) = delete;
   MotionWatchdog& operator=(const MotionWatchdog&) = delete;
 
@@ -30,6 +29,7 @@ class MotionWatchdog final : public TimedService {
   std::function<void()> on_expire_;
   std::optional<TimePoint> last_;
   bool expired_ = false;
+  Registration service_;  // last: polled only while everything above exists
 };
 
 }  // namespace advee::canopen

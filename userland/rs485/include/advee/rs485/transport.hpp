@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "advee/registration.hpp"
 #include "advee/rs485/error.hpp"
 #include "advee/rs485/protocol.hpp"
 
@@ -68,30 +69,7 @@ using ClosedHandler = std::function<void(std::error_code)>;
 // Keeps a subscription alive; destroying or reset()ting it unsubscribes.
 // After reset() returns, the handler is not running and will not run again
 // (unless reset() is called from within the handler itself, which is allowed).
-class Subscription {
- public:
-  Subscription() = default;
-  explicit Subscription(std::function<void()> cancel) : cancel_(std::move(cancel)) {}
-  ~Subscription() { reset(); }
-  Subscription(Subscription&& o) noexcept : cancel_(std::exchange(o.cancel_, {})) {}
-  Subscription& operator=(Subscription&& o) noexcept {
-    if (this != &o) {
-      reset();
-      cancel_ = std::exchange(o.cancel_, {});
-    }
-    return *this;
-  }
-  Subscription(const Subscription&) = delete;
-  Subscription& operator=(const Subscription&) = delete;
-
-  void reset() {
-    if (auto c = std::exchange(cancel_, {})) c();
-  }
-  explicit operator bool() const { return static_cast<bool>(cancel_); }
-
- private:
-  std::function<void()> cancel_;
-};
+using Subscription = advee::Registration;
 
 class Transport {
  public:

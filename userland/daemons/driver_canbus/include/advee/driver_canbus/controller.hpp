@@ -70,7 +70,6 @@ class DriveController final : public canopen::TimedService {
   using Started = std::function<void(bool ok, std::string why)>;
 
   DriveController(canopen::Master& master, ControllerConfig cfg, Report report);
-  ~DriveController() override;
   DriveController(const DriveController&) = delete;
   DriveController& operator=(const DriveController&) = delete;
 
@@ -153,6 +152,7 @@ class DriveController final : public canopen::TimedService {
   bool warned_speed_clamp_ = false;
   bool warned_not_homed_ = false;
   bool warned_refused_ = false;
+  Registration service_;  // last: polled only while everything above exists
 };
 
 }  // namespace advee::driver_canbus
