@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: GPL-2.0
+// canopenctl as a process: every usage error is found before the CAN socket
+// is opened (the interface here does not exist, so an I/O attempt ends with
+// exit 1 and the socket's error: "socket(PF_CAN)" without CAN support,
+// "if_nametoindex nosuchcan0" with it; a usage error is exit 2).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+namespace {
+
+bool tried_io(const std::string& out) {
+  return out.find("PF_CAN") != std::string::npos || out.find("nosuchcan0") != std::string::npos;
+}
+
+struct Outcome {
+  int status = -1;
+  std::string out;  // stdout and stderr
+};
+
+Outcome canopenctl(const std::string& args) {
+  Outcome r;
+  const std::string cmd = std::string(CANOPENCTL) + " " + args + " 2>&1";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, p)) r.out += buf;
+  const int w = ::pclose(p);
+  r.status = WIFEXITED(w) ? WEXITSTATUS(w) : -1;
+  return r;
+}
+
+TEST(CanopenctlCliTest, UsageErrorsExit2BeforeAnyIo) {
+  for (const char* args : {"-i nosuchcan0 write 1 6081 i8 300", "-i nosuchcan0 write 1 6081 u16 -1",
+                           "-i nosuchcan0 -t 10x read 1 1000", "-i nosuchcan0 -t 0 read 1 1000",
+                           "-i nosuchcan0 read 1 1000 u33", "-i nosuchcan0 read 128 1000",
+                           "-i nosuchcan0 read 1 1000:300", "-i nosuchcan0 nmt jump all",
+                           "-i nosuchcan0 monitor 1x", "-i nosuchcan0 bogus", "-i nosuchcan0 pdo",
+                           "-i nosuchcan0"}) {
+    const Outcome r = canopenctl(args);
+    EXPECT_EQ(r.status, 2) << "canopenctl " << args << ":\n" << r.out;
+    EXPECT_FALSE(tried_io(r.out)) << "canopenctl " << args << " opened the socket:\n" << r.out;
+  }
+}
+
+TEST(CanopenctlCliTest, ValidArgumentsReachTheSocket) {
+  const Outcome r = canopenctl("-i nosuchcan0 -t 200 write 1 6081 i8 -128");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(tried_io(r.out)) << r.out;
+}
+
+TEST(CanopenctlCliTest, HelpExits0) {
+  const Outcome r = canopenctl("--help");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("monitor"), std::string::npos) << r.out;
+}
+
+}  // namespace
