@@ -9,6 +9,9 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
+# Installed as Debian lays out the target: libraries in the multiarch
+# directory (GNUInstallDirs cannot tell it from a cross compiler).
+set(CMAKE_INSTALL_LIBDIR lib/${ADVEE_ARM_TRIPLET} CACHE PATH "object code libraries (multiarch)")
 
 # Debian's ${ADVEE_ARM_TRIPLET} builds of the libraries (scripts/fetch-arm-sysroot.sh, passed
 # by scripts/build-userland.sh as ADVEE_ARM_SYSROOT): searched after the
