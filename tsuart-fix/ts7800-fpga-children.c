@@ -171,43 +171,65 @@ static void ts7800_fpga_remove_child(void *data)
 	platform_device_unregister(data);
 }
 
-static int ts7800_fpga_add_uart(struct device *parent,
-				struct irq_domain *domain, unsigned int n)
+/*
+ * Map FPGA interrupt source @hwirq in @domain for a child and describe it in
+ * @res. The mapping belongs to @parent: its devres disposes of it after the
+ * children registered later are gone.
+ */
+static int ts7800_fpga_child_irq(struct device *parent, struct irq_domain *domain,
+				 irq_hw_number_t hwirq, const char *name,
+				 struct resource *res)
 {
-	struct platform_device_info info = { };
-	struct platform_device *pdev;
-	struct resource res[2];
 	unsigned int virq;
 	int ret;
 
-	virq = irq_create_mapping(domain, TS7800_FPGA_HWIRQ_UART(n));
+	virq = irq_create_mapping(domain, hwirq);
 	if (!virq)
 		return -EINVAL;
 	ret = devm_add_action_or_reset(parent, ts7800_fpga_dispose_irq,
 				       (void *)(uintptr_t)virq);
 	if (ret)
 		return ret;
+	res->start = virq;
+	res->end = virq;
+	res->flags = IORESOURCE_IRQ;
+	res->name = name;
+	return 0;
+}
+
+/* Register a child of @info->parent, removed by the parent's devres. */
+static int ts7800_fpga_add_child(const struct platform_device_info *info)
+{
+	struct platform_device *pdev;
+
+	pdev = platform_device_register_full(info);
+	if (IS_ERR(pdev))
+		return PTR_ERR(pdev);
+	return devm_add_action_or_reset(info->parent, ts7800_fpga_remove_child, pdev);
+}
+
+static int ts7800_fpga_add_uart(struct device *parent,
+				struct irq_domain *domain, unsigned int n)
+{
+	struct platform_device_info info = { };
+	struct resource res[2];
+	int ret;
 
 	memset(res, 0, sizeof(res));
+	ret = ts7800_fpga_child_irq(parent, domain, TS7800_FPGA_HWIRQ_UART(n), NULL, &res[1]);
+	if (ret)
+		return ret;
 	res[0].start = TS7800_UART_BASE(n);
 	res[0].end = TS7800_UART_BASE(n) + TS7800_UART_REGS_SIZE - 1;
 	res[0].flags = IORESOURCE_REG;
 	res[0].name = "ts-uart";
-	res[1].start = virq;
-	res[1].end = virq;
-	res[1].flags = IORESOURCE_IRQ;
 
 	info.parent = parent;
 	info.name = TS7800_UART_DEV_NAME;
 	info.id = n;
 	info.res = res;
 	info.num_res = ARRAY_SIZE(res);
-
-	pdev = platform_device_register_full(&info);
-	if (IS_ERR(pdev))
-		return PTR_ERR(pdev);
-	/* Registered after the mapping, so devres removes the child first. */
-	return devm_add_action_or_reset(parent, ts7800_fpga_remove_child, pdev);
+	return ts7800_fpga_add_child(&info);
 }
 
 /**
@@ -254,8 +276,8 @@ EXPORT_SYMBOL_GPL(ts7800_fpga_add_uarts);
 int ts7800_fpga_add_dio(struct device *parent)
 {
 	struct platform_device_info info = { };
-	struct platform_device *pdev;
 	struct resource res;
+	int ret;
 
 	memset(&res, 0, sizeof(res));
 	res.start = TS7800_DIO_IN;
@@ -268,11 +290,8 @@ int ts7800_fpga_add_dio(struct device *parent)
 	info.id = PLATFORM_DEVID_NONE;
 	info.res = &res;
 	info.num_res = 1;
-
-	pdev = platform_device_register_full(&info);
-	if (IS_ERR(pdev))
-		return dev_err_probe(parent, PTR_ERR(pdev), "DIO header\n");
-	return devm_add_action_or_reset(parent, ts7800_fpga_remove_child, pdev);
+	ret = ts7800_fpga_add_child(&info);
+	return ret ? dev_err_probe(parent, ret, "DIO header\n") : 0;
 }
 EXPORT_SYMBOL_GPL(ts7800_fpga_add_dio);
 
@@ -305,24 +324,15 @@ int ts7800_fpga_add_pc104(struct device *parent, struct irq_domain *domain,
 	};
 	struct resource res[TS7800_FPGA_PC104_NR_IRQS + 1];
 	struct platform_device_info info = { };
-	struct platform_device *pdev;
-	unsigned int i, n = 0, virq;
+	unsigned int n;
 	int ret;
 
 	memset(res, 0, sizeof(res));
-	for (i = 0; i < TS7800_FPGA_PC104_NR_IRQS; i++) {
-		virq = irq_create_mapping(domain, TS7800_FPGA_PC104_FIRST_IRQ + i);
-		if (!virq)
-			return -EINVAL;
-		ret = devm_add_action_or_reset(parent, ts7800_fpga_dispose_irq,
-					       (void *)(uintptr_t)virq);
+	for (n = 0; n < TS7800_FPGA_PC104_NR_IRQS; n++) {
+		ret = ts7800_fpga_child_irq(parent, domain, TS7800_FPGA_PC104_FIRST_IRQ + n,
+					    names[n], &res[n]);
 		if (ret)
 			return ret;
-		res[n].start = virq;
-		res[n].end = virq;
-		res[n].flags = IORESOURCE_IRQ;
-		res[n].name = names[i];
-		n++;
 	}
 	if (io)
 		res[n++] = *io;
@@ -332,10 +342,7 @@ int ts7800_fpga_add_pc104(struct device *parent, struct irq_domain *domain,
 	info.id = PLATFORM_DEVID_NONE;
 	info.res = res;
 	info.num_res = n;
-	pdev = platform_device_register_full(&info);
-	if (IS_ERR(pdev))
-		return dev_err_probe(parent, PTR_ERR(pdev), "PC/104 bus device\n");
-	/* Registered after the mappings, so devres removes the child first. */
-	return devm_add_action_or_reset(parent, ts7800_fpga_remove_child, pdev);
+	ret = ts7800_fpga_add_child(&info);
+	return ret ? dev_err_probe(parent, ret, "PC/104 bus device\n") : 0;
 }
 EXPORT_SYMBOL_GPL(ts7800_fpga_add_pc104);
