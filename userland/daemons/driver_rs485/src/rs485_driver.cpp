@@ -11,7 +11,6 @@
 namespace advee::driver_rs485 {
 
 using namespace std::chrono_literals;
-using Clock = std::chrono::steady_clock;
 
 Rs485Driver::Rs485Driver(module::Module& m, Rs485Config cfg, rs485::Transport& bus, NodeStatusFn node_status)
     : m_(m), cfg_(std::move(cfg)), node_status_(std::move(node_status)) {
@@ -91,7 +90,7 @@ void Rs485Driver::poll_so1() {
   auto raw = so1_->raw_ticks(cfg_.so1->width, call_);
   so1_health_->record("GET_TICKS", raw ? std::error_code() : raw.error(), node_status_);
   if (!raw) return;
-  const auto now = Clock::now();
+  const auto now = m_.timers().now();  // the loop's clock (a manual one in tests)
   const bool ambiguous = last_counts_ && now - last_counts_at_ >= max_odo_gap_;
   if (ambiguous)
     m_.errors().report(module::Severity::Warning, module::ErrorType::Device, kErrOdoGap,
@@ -115,7 +114,7 @@ void Rs485Driver::poll_so1() {
 
 void Rs485Driver::poll_sbs1() {
   if (!sbs1_health_->may_poll(node_status_)) return;
-  const auto now = Clock::now();
+  const auto now = m_.timers().now();  // the loop's clock (a manual one in tests)
   if (beacon_ids_ && (ids_pending_ || now - ids_sent_at_ >= cfg_.sbs1->resend_ids)) {
     const auto ec = sbs1_->set_beacon_ids(*beacon_ids_, call_);
     sbs1_health_->record("SET_BEACON_IDS", ec, node_status_);

@@ -27,9 +27,17 @@ using rs485::FakeTransport;
 
 namespace {
 
+// The modules run on a manual clock: `d` of module time in 1 ms steps, each
+// followed by the loop passes that handle what became ready (memq delivers
+// on the pass after a publish). No wall-clock wait: the fake transport
+// answers synchronously, and the driver measures odometry intervals on the
+// module's clock, so they are exact.
+module::ManualTimers clock_;
 void spin(module::Module& m, std::chrono::milliseconds d) {
-  const auto end = std::chrono::steady_clock::now() + d;
-  while (std::chrono::steady_clock::now() < end && m.run_once(5ms)) {
+  for (auto t = 0ms; t < d; t += 1ms) {
+    clock_.advance(1ms);
+    for (int i = 0; i < 3 && m.run_once(0ms); ++i) {
+    }
   }
 }
 
@@ -160,7 +168,7 @@ TEST(Rs485Driver, PublishesRangesAndOdometry) {
   BusA a;
   FakeTransport t([&](const rs485::Request& r) { return a.respond(r); });
   auto cfg = bus_a_config();
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   Rx rx;
   rx.subscribe(m.lcm());
   Rs485Driver d(m, cfg, t);
@@ -197,7 +205,7 @@ TEST(Rs485Driver, PauseStopsPollingAndRunResumes) {
   BusA a;
   FakeTransport t([&](const rs485::Request& r) { return a.respond(r); });
   auto cfg = bus_a_config();
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   Rx rx;
   rx.subscribe(m.lcm());
   Rs485Driver d(m, cfg, t);
@@ -224,7 +232,7 @@ std::vector<lowlevel::data_odo_t> odometry_after_gap(Rs485Config cfg, std::chron
                                                      std::int64_t rolled, Rx& rx) {
   BusA a;
   FakeTransport t([&](const rs485::Request& r) { return a.respond(r); });
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   rx.subscribe(m.lcm());
   Rs485Driver d(m, cfg, t);
   m.request_state(module::State::Run, false, "test");
@@ -276,7 +284,7 @@ TEST(Rs485Driver, SilentBoardIsReportedOnceAndTheOtherStillPublished) {
   a.rear_silent = true;
   FakeTransport t([&](const rs485::Request& r) { return a.respond(r); });
   auto cfg = bus_a_config();
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   Rx rx;
   rx.subscribe(m.lcm());
   Rs485Driver d(m, cfg, t);
@@ -304,7 +312,7 @@ TEST(Rs485Driver, OffNodeIsNotPolledUntilReset) {
   BusA a;
   FakeTransport t([&](const rs485::Request& r) { return a.respond(r); });
   auto cfg = bus_a_config();
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   Rx rx;
   rx.subscribe(m.lcm());
   std::atomic<int> rear_state{static_cast<int>(rs485::NodeState::passive)};
@@ -358,7 +366,7 @@ TEST(Rs485Driver, ActiveBeaconsReachTheScanner) {
   auto cfg = parse_rs485_config(module::ConfigNode::parse(
       "module: {name: driver_rs485b, lcm_url: 'memq://', print_severity: none}\n"
       "driver_rs485:\n  bus: {device: b}\n  rate_hz: 20\n  sbs1: {address: 0x30, beacon_ids: [1]}\n"));
-  module::Module m(cfg.module);
+  module::Module m(cfg.module, clock_);
   Rx rx;
   rx.subscribe(m.lcm());
   Rs485Driver d(m, cfg, t);
