@@ -10,42 +10,10 @@
 # back, SIGTERM, and exit 0x22 when the drives do not answer.
 . "$(dirname "$0")/lib.sh"
 
-CANBIN=$VMTEST_BUILD/userland/canopen
-IF=vcan0
-SIMS=()
-
-canbus_cleanup() {
-	bg_kill_all
-	local p
-	for p in "${SIMS[@]}"; do kill "$p" 2>/dev/null; done
-	for p in "${SIMS[@]}"; do wait "$p" 2>/dev/null; done
-	ip link del "$IF" 2>/dev/null
-	modprobe -r vcan can_raw can 2>/dev/null
-	net_teardown
-	rm -rf "$SCR"
-}
-
-for b in "$DRIVER_CANBUS" "$PROBE" "$LCMCTL" "$CANBIN/canopen-sim-drive"; do
-	[ -x "$b" ] || { echo "Bail out! $b not built"; exit 1; }
-done
-trap canbus_cleanup EXIT
-net_setup || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
-modprobe vcan || { echo "Bail out! modprobe vcan"; exit 1; }
-ip link add dev "$IF" type vcan 2>/dev/null
-ip link set "$IF" txqueuelen 1000
-ip link set up "$IF" || { echo "Bail out! cannot bring $IF up"; exit 1; }
+canbus_up "$DRIVER_CANBUS" "$PROBE" "$LCMCTL"
 
 tap_plan 22
 
-# sim NAME ARGS...: a simulated drive; its pid in SIM_<NAME>.
-sim_drive() {
-	local name=$1
-	shift
-	"$CANBIN/canopen-sim-drive" -i "$IF" "$@" >>"$SCR/$name.log" 2>&1 &
-	SIMS+=($!)
-	eval "SIM_$name=$!"
-	wait_for "$SCR/$name.log" "ready on" 20 >/dev/null
-}
 # drives FILE KEY: KEY of the last LL_DATA_DRIVES line in FILE.
 drives() { field "$(grep '^LL_DATA_DRIVES ' "$1" | tail -1)" "$2"; }
 errors_numbered() { grep -c "^CM_DATA_ERROR .* number=$2 " "$1"; }

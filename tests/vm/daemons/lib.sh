@@ -44,3 +44,44 @@ mean_field() {
 }
 
 
+
+# The CAN side of the driver_canbus tests: vcan0 and canopen-sim-drive.
+CANBIN=$VMTEST_BUILD/userland/canopen
+IF=vcan0
+SIMS=()
+
+canbus_cleanup() {
+	bg_kill_all
+	local p
+	for p in "${SIMS[@]}"; do kill "$p" 2>/dev/null; done
+	for p in "${SIMS[@]}"; do wait "$p" 2>/dev/null; done
+	ip link del "$IF" 2>/dev/null
+	modprobe -r vcan can_raw can 2>/dev/null
+	net_teardown
+	rm -rf "$SCR"
+}
+
+# canbus_up PROGRAM...: the programs and the simulator are built, LCM on
+# loopback, vcan0 up (bails out otherwise); cleans up on exit.
+canbus_up() {
+	local b
+	for b in "$@" "$CANBIN/canopen-sim-drive"; do
+		[ -x "$b" ] || { echo "Bail out! $b not built"; exit 1; }
+	done
+	trap canbus_cleanup EXIT
+	net_setup || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
+	modprobe vcan || { echo "Bail out! modprobe vcan"; exit 1; }
+	ip link add dev "$IF" type vcan 2>/dev/null
+	ip link set "$IF" txqueuelen 1000
+	ip link set up "$IF" || { echo "Bail out! cannot bring $IF up"; exit 1; }
+}
+
+# sim_drive NAME ARGS...: a simulated drive; its pid in SIM_<NAME>.
+sim_drive() {
+	local name=$1
+	shift
+	"$CANBIN/canopen-sim-drive" -i "$IF" "$@" >>"$SCR/$name.log" 2>&1 &
+	SIMS+=($!)
+	eval "SIM_$name=$!"
+	wait_for "$SCR/$name.log" "ready on" 20 >/dev/null
+}

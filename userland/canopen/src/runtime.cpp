@@ -10,13 +10,17 @@
 
 namespace advee::canopen {
 
-MasterRuntime::MasterRuntime(EventLoop& loop, const std::string& ifname, MasterConfig cfg)
+namespace {
+void print_state(const CanErrorInfo& e) {
+  if (e.state) std::fprintf(stderr, "canopen: controller %s\n", std::string(to_string(*e.state)).c_str());
+}
+}  // namespace
+
+MasterRuntime::MasterRuntime(EventLoop& loop, const std::string& ifname, MasterConfig cfg, CanPort::ErrorHandler on_error)
     : loop_(loop),
       port_(std::make_unique<CanPort>(
           loop, CanSocket::open(ifname), [this](const CanFrame& f) { master_.handle(f); },
-          [](const CanErrorInfo& e) {
-            if (e.state) std::fprintf(stderr, "canopen: controller %s\n", std::string(to_string(*e.state)).c_str());
-          })),
+          on_error ? std::move(on_error) : CanPort::ErrorHandler(print_state))),
       master_(cfg, port_->sender(), system_monotonic_clock()) {
   loop_.add_timer_source([this] { return master_.next_deadline(); }, [this] { master_.poll(); });
 }

@@ -8,7 +8,9 @@
 #include <sys/epoll.h>
 
 #include <atomic>
+#include <cerrno>
 #include <future>
+#include <system_error>
 
 namespace advee::canopen {
 namespace {
@@ -94,6 +96,24 @@ TEST(UniqueFdTest, ClosesOnceAndMoves) {
   const int raw = b.get();
   b.reset();
   EXPECT_EQ(::fcntl(raw, F_GETFD), -1) << "closed";
+}
+
+TEST(LoopThreadTest, AnExceptionEndsTheLoopAndReachesTheFailureHandler) {
+  EventLoop loop;
+  std::promise<std::string> failed;
+  auto what = failed.get_future();
+  {
+    LoopThread thread(loop, [&](std::exception_ptr e) {
+      try {
+        std::rethrow_exception(e);
+      } catch (const std::exception& x) {
+        failed.set_value(x.what());
+      }
+    });
+    loop.post([] { throw std::system_error(ENETDOWN, std::generic_category(), "recvmmsg(CAN)"); });
+    ASSERT_EQ(what.wait_for(std::chrono::seconds(10)), std::future_status::ready);
+  }  // stops and joins a loop that already ended: no std::terminate
+  EXPECT_EQ(what.get(), "recvmmsg(CAN): Network is down");
 }
 
 }  // namespace

@@ -17,12 +17,14 @@ using module::ExitKind;
 using module::ModuleExit;
 using module::State;
 
-CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), cfg_(cfg) {
+CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), cfg_(cfg), bus_state_(cfg_.interface) {
   canopen::MasterConfig mc;
   mc.node_id = cfg_.master_node;
   mc.heartbeat_period = cfg_.master_heartbeat;
   try {
-    runtime_ = std::make_unique<canopen::MasterRuntime>(loop_, cfg_.interface, mc);
+    runtime_ = std::make_unique<canopen::MasterRuntime>(loop_, cfg_.interface, mc, [this](const canopen::CanErrorInfo& e) {
+      if (auto r = bus_state_.on_error(e)) m_.errors().report(r->severity, module::ErrorType::Device, kErrBus, r->text);
+    });
   } catch (const std::system_error& e) {
     throw ModuleExit(ExitKind::Device, kExitNoInterface,
                      "CAN interface " + cfg_.interface + ": " + e.what() +
@@ -82,7 +84,19 @@ CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), 
       m_.post([why] { throw ModuleExit(ExitKind::Device, kExitBootFailed, "cannot boot the drives: " + why); });
     });
   });
-  thread_ = std::make_unique<canopen::LoopThread>(loop_);
+  thread_ = std::make_unique<canopen::LoopThread>(loop_, [this](std::exception_ptr failure) {
+    std::string why = "unknown exception";
+    try {
+      std::rethrow_exception(failure);
+    } catch (const std::exception& e) {
+      why = e.what();
+    } catch (...) {
+    }
+    // Module::run() reports it (fatal, number 0x23) and returns the code.
+    m_.post([why, ifname = cfg_.interface] {
+      throw ModuleExit(ExitKind::Device, kExitCanFailed, "CAN loop on " + ifname + " failed: " + why);
+    });
+  });
 }
 
 CanbusDriver::~CanbusDriver() {

@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
     spec.default_config = "/etc/advee/driver_canbus.yaml";
     spec.exit_details =
         "  0x21       the CAN interface cannot be opened\n"
-        "  0x22       a drive cannot be booted at start-up\n";
+        "  0x22       a drive cannot be booted at start-up\n"
+        "  0x23       the CAN loop failed (e.g. the interface went down)\n";
     const auto args = module::parse_command_line(spec, argc, argv);
     if (const int* status = std::get_if<int>(&args)) return *status;
     const std::string& config = std::get<std::string>(args);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -63,10 +64,15 @@ class EventLoop {
   std::optional<TimePoint> armed_;  // what the timerfd holds, to skip redundant syscalls
 };
 
-// Runs a loop on its own thread; stops and joins on destruction.
+// Runs a loop on its own thread; stops and joins on destruction. An
+// exception out of a handler ends the loop and goes to `on_failure` on the
+// loop's thread (e.g. recvmmsg's ENETDOWN when the interface goes down); it
+// never reaches std::terminate. Without a handler it is dropped.
 class LoopThread {
  public:
-  explicit LoopThread(EventLoop& loop) : loop_(loop), thread_([this] { loop_.run(); }) {}
+  using FailureHandler = std::function<void(std::exception_ptr)>;
+  explicit LoopThread(EventLoop& loop, FailureHandler on_failure = nullptr)
+      : loop_(loop), on_failure_(std::move(on_failure)), thread_([this] { run(); }) {}
   ~LoopThread() {
     loop_.stop();
     if (thread_.joinable()) thread_.join();
@@ -75,8 +81,17 @@ class LoopThread {
   LoopThread& operator=(const LoopThread&) = delete;
 
  private:
+  void run() {
+    try {
+      loop_.run();
+    } catch (...) {
+      if (on_failure_) on_failure_(std::current_exception());
+    }
+  }
+
   EventLoop& loop_;
-  std::thread thread_;
+  FailureHandler on_failure_;
+  std::thread thread_;  // last: started once the rest exists
 };
 
 }  // namespace advee::canopen

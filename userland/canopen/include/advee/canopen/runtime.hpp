@@ -18,7 +18,9 @@ namespace advee::canopen {
 
 class MasterRuntime {
  public:
-  MasterRuntime(EventLoop& loop, const std::string& ifname, MasterConfig cfg);
+  // on_error gets the controller's error frames (state changes, restarts);
+  // without one, state changes are printed to stderr.
+  MasterRuntime(EventLoop& loop, const std::string& ifname, MasterConfig cfg, CanPort::ErrorHandler on_error = nullptr);
   Master& master() { return master_; }
   CanPort& port() { return *port_; }
   EventLoop& loop() { return loop_; }

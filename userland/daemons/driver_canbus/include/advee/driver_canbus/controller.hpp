@@ -41,6 +41,7 @@ enum ErrorNumber : int {
   kErrStop = 12,            // notice: LL_EVENT_STOP engaged/released
   kErrDrive = 13,           // error: a drive did not follow a command (enable, move, quick stop)
   kErrRefused = 14,         // warning: a command refused (stopped, not ready, unknown axis)
+  kErrBus = 15,             // CAN controller: error bus-off, warning error-passive/-warning, notice active again
 };
 
 enum class Axis : std::int8_t { kPropulsion = 0, kSteering = 1 };
