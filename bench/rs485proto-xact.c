@@ -3,7 +3,7 @@
  * bench - back-to-back transactions on the simulated bus at 115200 Bd with
  * a slave (a thread on the wire) that answers 200 us after a request ended:
  *
- *   1. through n_rs485 (RS485_IOC_XFER),
+ *   1. through n_rs485 (N_RS485_IOC_XFER),
  *   2. through N_TTY with the seed's design: a user-space state machine that
  *      switches mark/space with tcsetattr(TCSADRAIN) and decodes PARMRK,
  *
@@ -43,7 +43,7 @@ static void *fast_slave_main(void *arg)
 {
 	struct fast_slave *s = arg;
 	struct pollfd p = { .fd = s->wfd, .events = POLLIN };
-	uint8_t f[RS485_MAX_FRAME + 1], r[RS485_MAX_FRAME];
+	uint8_t f[N_RS485_MAX_FRAME + 1], r[N_RS485_MAX_FRAME];
 	uint16_t w[512];
 	size_t pos = 0;
 	int in_frame = 0;
@@ -69,7 +69,7 @@ static void *fast_slave_main(void *arg)
 				if (crc8_maxim(f, pos - 1) != f[pos - 1] || f[0] != SLAVE_ADDR)
 					continue;
 				memcpy(r, f, pos - 1);
-				r[2] = RS485_RESP_ACK;
+				r[2] = N_RS485_RESP_ACK;
 				while (now_s() < t)
 					;
 				wire_send_frame(s->wfd, r, pos - 1, 0);
@@ -115,7 +115,7 @@ static int raw_set_mark(int fd, int mark)
 
 static int raw_xfer(int fd, const uint8_t *req, size_t n, uint8_t *resp, double timeout_s)
 {
-	uint8_t wire[RS485_MAX_FRAME + 1], in[1024];
+	uint8_t wire[N_RS485_MAX_FRAME + 1], in[1024];
 	struct pollfd p = { .fd = fd, .events = POLLIN };
 	double end = now_s() + timeout_s;
 	size_t pos = 0;
@@ -197,10 +197,10 @@ static void report(const char *what, const struct result *r, double wire_s)
 
 int main(void)
 {
-	uint8_t data[REQ_DATA] = { 1, 2, 3, 4 }, req[8], resp[RS485_MAX_FRAME + 1];
+	uint8_t data[REQ_DATA] = { 1, 2, 3, 4 }, req[8], resp[N_RS485_MAX_FRAME + 1];
 	struct result kern = { 0 }, user = { 0 };
 	struct fast_slave s = { 0 };
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	/* request and response: ADDR INSTR FLAGS LEN DATA CRC */
 	double wire_s = 2.0 * (REQ_DATA + 5) * 11 / BAUD + TURNAROUND_US / 1e6;
 	double t0, t;
@@ -220,7 +220,7 @@ int main(void)
 	while (now_s() - t0 < SECONDS && kern.n < MAX_SAMPLES) {
 		t = now_s();
 		if (xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, REQ_DATA, 100000, 0) ||
-		    x.status != RS485_OK || memcmp(x.resp.data, data, REQ_DATA)) {
+		    x.status != N_RS485_OK || memcmp(x.resp.data, data, REQ_DATA)) {
 			kern.failed++;
 			continue;
 		}

@@ -24,18 +24,12 @@
 #include <uapi/linux/n_rs485.h>
 
 /* ADDR INSTR FLAGS LEN DATA CRC */
-#define RS485_WIRE_MAX		(RS485_MAX_FRAME + 1)
+#define RS485_WIRE_MAX		(N_RS485_MAX_FRAME + 1)
 #define RS485_EVENT_QUEUE_MAX	64
 #define RS485_REQ_QUEUE_MAX	64
 #define RS485_ERR_FAIL		8	/* CAN-like counter: +8 per failure */
 #define RS485_ERR_PASSIVE	128
 #define RS485_ERR_OFF		256
-/*
- * RS485_IOC_GET_STATS as built against the first struct rs485_stats (136
- * bytes, before collisions was appended): still served, with that prefix.
- */
-#define RS485_IOC_GET_STATS_V1	_IOC(_IOC_READ, RS485_IOC_MAGIC, 4, \
-				     offsetof(struct rs485_stats, collisions))
 
 enum rs485_rx_state {
 	RS485_RX_IDLE,		/* waiting for an address character */
@@ -57,7 +51,7 @@ struct rs485_rx {
 	bool lenient;			/* under bus->lock */
 	unsigned int pos;		/* bytes of frame.buf filled */
 	u32 attempt;			/* bus->attempt when the frame in progress began */
-	u8 buf[RS485_MAX_FRAME];	/* ADDR INSTR FLAGS LEN DATA */
+	u8 buf[N_RS485_MAX_FRAME];	/* ADDR INSTR FLAGS LEN DATA */
 	/*
 	 * The characters of the frame in progress as received (with their
 	 * parity flag) and whether leniency decided anything in it: if such a
@@ -84,14 +78,14 @@ enum rs485_resp_state {
 struct rs485_req {
 	struct list_head node;		/* bus->queue */
 	struct kref ref;		/* caller + bus */
-	struct rs485_frame frame;	/* request */
-	struct rs485_frame resp;
+	struct n_rs485_frame frame;	/* request */
+	struct n_rs485_frame resp;
 	u32 timeout_us;
 	u32 retries;
 	u32 status;
 	u32 attempts;
 	bool expect_resp;
-	bool is_xfer;			/* RS485_IOC_XFER (else write()) */
+	bool is_xfer;			/* N_RS485_IOC_XFER (else write()) */
 	bool done;
 	bool abandoned;			/* the caller gave up (signal, close) */
 };
@@ -99,7 +93,7 @@ struct rs485_req {
 struct rs485_event {
 	struct list_head node;
 	unsigned int len;
-	u8 buf[RS485_MAX_FRAME];
+	u8 buf[N_RS485_MAX_FRAME];
 };
 
 struct rs485_bus {
@@ -134,7 +128,7 @@ struct rs485_bus {
 	ktime_t rx_last;
 
 	/*
-	 * RS485_CFG_ECHO: the frame being sent, which the first characters
+	 * N_RS485_CFG_ECHO: the frame being sent, which the first characters
 	 * received must repeat. echo_len 0: no echo expected. Set by the
 	 * worker, consumed by receive_buf (rs485_rx_echo()).
 	 */
@@ -146,8 +140,8 @@ struct rs485_bus {
 	struct list_head events;	/* struct rs485_event, FIFO */
 	unsigned int nevents;
 
-	struct rs485_config cfg;	/* written under line_mutex and lock */
-	struct rs485_stats stats;
+	struct n_rs485_config cfg;	/* written under line_mutex and lock */
+	struct n_rs485_stats stats;
 	u16 node_err[256];
 
 	struct ktermios saved_termios;
@@ -165,7 +159,7 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 /* rs485-tx.c */
 int rs485_line_setup(struct rs485_bus *bus);
 void rs485_line_restore(struct rs485_bus *bus);
-int rs485_line_set_config(struct rs485_bus *bus, const struct rs485_config *cfg);
+int rs485_line_set_config(struct rs485_bus *bus, const struct n_rs485_config *cfg);
 u64 rs485_char_ns(const struct rs485_bus *bus);
 int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len);
 
@@ -189,6 +183,6 @@ ssize_t rs485_write(struct tty_struct *tty, struct file *file, const u8 *buf, si
 __poll_t rs485_poll(struct tty_struct *tty, struct file *file, struct poll_table_struct *wait);
 int rs485_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg);
 int rs485_compat_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg);
-int rs485_config_check(const struct rs485_config *cfg);
+int rs485_config_check(const struct n_rs485_config *cfg);
 
 #endif /* N_RS485_INTERNAL_H */

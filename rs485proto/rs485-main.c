@@ -35,7 +35,7 @@ MODULE_PARM_DESC(ldisc, "line discipline number (default 29 = N_DEVELOPMENT)");
 static void rs485_attach_baud(struct rs485_bus *bus)
 {
 	struct tty_struct *tty = bus->tty;
-	struct rs485_config cfg = bus->cfg;
+	struct n_rs485_config cfg = bus->cfg;
 	speed_t initial = tty_termios_baud_rate(&tty->driver->init_termios);
 
 	down_read(&tty->termios_rwsem);

@@ -124,13 +124,13 @@ static void rs485_rx_data(struct rs485_bus *bus, u8 c)
 		return;
 	case RS485_RX_HEADER:
 		rx->buf[rx->pos++] = c;
-		if (rx->pos < RS485_HEADER_LEN)
+		if (rx->pos < N_RS485_HEADER_LEN)
 			return;
 		rx->state = c ? RS485_RX_DATA : RS485_RX_CRC;
 		return;
 	case RS485_RX_DATA:
 		rx->buf[rx->pos++] = c;
-		if (rx->pos == RS485_HEADER_LEN + rx->buf[3])
+		if (rx->pos == N_RS485_HEADER_LEN + rx->buf[3])
 			rx->state = RS485_RX_CRC;
 		return;
 	case RS485_RX_CRC:
@@ -158,7 +158,7 @@ static void rs485_rx_char(struct rs485_bus *bus, u8 c, bool parity, bool lenient
 }
 
 /*
- * RS485_CFG_ECHO: while the worker expects the echo of the frame it sends,
+ * N_RS485_CFG_ECHO: while the worker expects the echo of the frame it sends,
  * the first characters received are that echo, not frames. Each is compared
  * with the character sent (the 8 data bits: the parity flag depends on when
  * the driver read it, before or after the switch back to space); a

@@ -79,8 +79,8 @@ void rs485_line_restore(struct rs485_bus *bus)
 	tty_set_termios(bus->tty, &bus->saved_termios);
 }
 
-/* RS485_IOC_SET_CONFIG, under line_mutex: new rate on the line at once. */
-int rs485_line_set_config(struct rs485_bus *bus, const struct rs485_config *cfg)
+/* N_RS485_IOC_SET_CONFIG, under line_mutex: new rate on the line at once. */
+int rs485_line_set_config(struct rs485_bus *bus, const struct n_rs485_config *cfg)
 {
 	unsigned long flags;
 
@@ -188,7 +188,7 @@ static void rs485_rx_lenient(struct rs485_bus *bus, bool on)
 	spin_unlock_irqrestore(&bus->lock, flags);
 }
 
-/* RS485_CFG_ECHO: the next characters received must repeat @buf. */
+/* N_RS485_CFG_ECHO: the next characters received must repeat @buf. */
 static void rs485_echo_expect(struct rs485_bus *bus, const u8 *buf, size_t len)
 {
 	unsigned long flags;
@@ -244,7 +244,7 @@ static int rs485_echo_check(struct rs485_bus *bus)
 int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 {
 	u64 gap_ns = bus->cfg.gap_chars * rs485_char_ns(bus);
-	bool echo = bus->cfg.flags & RS485_CFG_ECHO;
+	bool echo = bus->cfg.flags & N_RS485_CFG_ECHO;
 	struct tty_port *port = bus->tty->port;
 	unsigned long flags;
 	ktime_t start;

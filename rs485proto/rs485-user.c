@@ -27,7 +27,7 @@ void rs485_event_queue(struct rs485_bus *bus, const u8 *frame, unsigned int len)
 	unsigned long flags;
 
 	spin_lock_irqsave(&bus->lock, flags);
-	if (!(frame[2] & RS485_RESP_EVENT))
+	if (!(frame[2] & N_RS485_RESP_EVENT))
 		bus->stats.unexpected++;
 	if (!ev || bus->nevents >= RS485_EVENT_QUEUE_MAX) {
 		bus->stats.events_dropped++;
@@ -144,7 +144,7 @@ ssize_t rs485_write(struct tty_struct *tty, struct file *file, const u8 *buf, si
 	struct rs485_req *req;
 	int ret;
 
-	if (nr < RS485_HEADER_LEN || nr != RS485_HEADER_LEN + buf[3])
+	if (nr < N_RS485_HEADER_LEN || nr != N_RS485_HEADER_LEN + buf[3])
 		return -EINVAL;
 	req = rs485_req_alloc();
 	if (!req)
@@ -152,7 +152,7 @@ ssize_t rs485_write(struct tty_struct *tty, struct file *file, const u8 *buf, si
 	memcpy(&req->frame, buf, nr);
 	req->timeout_us = READ_ONCE(bus->cfg.timeout_us);
 	/* The response, if any, goes to read(): wait for it once, no retries. */
-	req->expect_resp = buf[0] != RS485_ADDR_BROADCAST && !(buf[2] & RS485_REQ_NOACK);
+	req->expect_resp = buf[0] != N_RS485_ADDR_BROADCAST && !(buf[2] & N_RS485_REQ_NOACK);
 	for (;;) {
 		ret = rs485_req_submit(bus, req);
 		if (ret != -EAGAIN || tty_io_nonblock(tty, file))
@@ -189,14 +189,14 @@ __poll_t rs485_poll(struct tty_struct *tty, struct file *file, struct poll_table
 	return mask;
 }
 
-int rs485_config_check(const struct rs485_config *cfg)
+int rs485_config_check(const struct n_rs485_config *cfg)
 {
 	unsigned int i;
 
 	for (i = 0; i < ARRAY_SIZE(cfg->reserved); i++)
 		if (cfg->reserved[i])
 			return -EINVAL;
-	if (cfg->flags & ~RS485_CFG_ECHO)
+	if (cfg->flags & ~N_RS485_CFG_ECHO)
 		return -EINVAL;
 	if (cfg->baud < RS485_BAUD_MIN || cfg->baud > RS485_BAUD_MAX ||
 	    cfg->timeout_us < RS485_TIMEOUT_MIN_US || cfg->timeout_us > RS485_TIMEOUT_MAX_US ||
@@ -208,7 +208,7 @@ int rs485_config_check(const struct rs485_config *cfg)
 
 static int rs485_ioc_xfer(struct rs485_bus *bus, void __user *arg)
 {
-	struct rs485_xfer *x;
+	struct n_rs485_xfer *x;
 	struct rs485_req *req;
 	int ret;
 
@@ -217,25 +217,25 @@ static int rs485_ioc_xfer(struct rs485_bus *bus, void __user *arg)
 		return -ENOMEM;
 	ret = -EFAULT;
 	if (copy_from_user(&x->req, arg, sizeof(x->req)) ||
-	    copy_from_user(&x->timeout_us, arg + offsetof(struct rs485_xfer, timeout_us),
+	    copy_from_user(&x->timeout_us, arg + offsetof(struct n_rs485_xfer, timeout_us),
 			   2 * sizeof(u32)))
 		goto out;
 	ret = -EINVAL;
-	if ((x->req.flags & ~RS485_REQ_NOACK) ||
-	    (x->timeout_us != RS485_DEFAULT && (x->timeout_us < RS485_TIMEOUT_MIN_US ||
+	if ((x->req.flags & ~N_RS485_REQ_NOACK) ||
+	    (x->timeout_us != N_RS485_DEFAULT && (x->timeout_us < RS485_TIMEOUT_MIN_US ||
 						x->timeout_us > RS485_TIMEOUT_MAX_US)) ||
-	    (x->retries != RS485_DEFAULT && x->retries > RS485_RETRIES_MAX))
+	    (x->retries != N_RS485_DEFAULT && x->retries > RS485_RETRIES_MAX))
 		goto out;
 	ret = -ENOMEM;
 	req = rs485_req_alloc();
 	if (!req)
 		goto out;
-	memcpy(&req->frame, &x->req, RS485_HEADER_LEN + x->req.len);
-	req->timeout_us = x->timeout_us == RS485_DEFAULT ? READ_ONCE(bus->cfg.timeout_us) :
+	memcpy(&req->frame, &x->req, N_RS485_HEADER_LEN + x->req.len);
+	req->timeout_us = x->timeout_us == N_RS485_DEFAULT ? READ_ONCE(bus->cfg.timeout_us) :
 							   x->timeout_us;
-	req->retries = x->retries == RS485_DEFAULT ? READ_ONCE(bus->cfg.retries) : x->retries;
-	req->expect_resp = x->req.addr != RS485_ADDR_BROADCAST &&
-			   !(x->req.flags & RS485_REQ_NOACK);
+	req->retries = x->retries == N_RS485_DEFAULT ? READ_ONCE(bus->cfg.retries) : x->retries;
+	req->expect_resp = x->req.addr != N_RS485_ADDR_BROADCAST &&
+			   !(x->req.flags & N_RS485_REQ_NOACK);
 	req->is_xfer = true;
 
 	ret = rs485_req_submit(bus, req);
@@ -258,7 +258,7 @@ out:
 
 static int rs485_ioc_set_config(struct rs485_bus *bus, void __user *arg)
 {
-	struct rs485_config cfg;
+	struct n_rs485_config cfg;
 	int ret;
 
 	if (copy_from_user(&cfg, arg, sizeof(cfg)))
@@ -281,7 +281,7 @@ static int rs485_ioc_set_config(struct rs485_bus *bus, void __user *arg)
  */
 static int rs485_ioc_get_config(struct rs485_bus *bus, void __user *arg)
 {
-	struct rs485_config cfg;
+	struct n_rs485_config cfg;
 	unsigned long flags;
 
 	memset(&cfg, 0, sizeof(cfg));
@@ -291,22 +291,21 @@ static int rs485_ioc_get_config(struct rs485_bus *bus, void __user *arg)
 	return copy_to_user(arg, &cfg, sizeof(cfg)) ? -EFAULT : 0;
 }
 
-/* @size: the caller's struct rs485_stats, the current one or the first. */
-static int rs485_ioc_get_stats(struct rs485_bus *bus, void __user *arg, size_t size)
+static int rs485_ioc_get_stats(struct rs485_bus *bus, void __user *arg)
 {
-	struct rs485_stats st;
+	struct n_rs485_stats st;
 	unsigned long flags;
 
 	memset(&st, 0, sizeof(st));
 	spin_lock_irqsave(&bus->lock, flags);
 	st = bus->stats;
 	spin_unlock_irqrestore(&bus->lock, flags);
-	return copy_to_user(arg, &st, size) ? -EFAULT : 0;
+	return copy_to_user(arg, &st, sizeof(st)) ? -EFAULT : 0;
 }
 
 static int rs485_ioc_node(struct rs485_bus *bus, void __user *arg, bool reset)
 {
-	struct rs485_node node;
+	struct n_rs485_node node;
 	unsigned long flags;
 	u16 err;
 
@@ -322,8 +321,8 @@ static int rs485_ioc_node(struct rs485_bus *bus, void __user *arg, bool reset)
 	if (reset)
 		return 0;
 	node.errors = err;
-	node.state = err >= RS485_ERR_OFF ? RS485_NODE_OFF :
-		     err >= RS485_ERR_PASSIVE ? RS485_NODE_PASSIVE : RS485_NODE_ACTIVE;
+	node.state = err >= RS485_ERR_OFF ? N_RS485_NODE_OFF :
+		     err >= RS485_ERR_PASSIVE ? N_RS485_NODE_PASSIVE : N_RS485_NODE_ACTIVE;
 	return copy_to_user(arg, &node, sizeof(node)) ? -EFAULT : 0;
 }
 
@@ -347,19 +346,17 @@ int rs485_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg)
 	void __user *uarg = (void __user *)arg;
 
 	switch (cmd) {
-	case RS485_IOC_XFER:
+	case N_RS485_IOC_XFER:
 		return rs485_ioc_xfer(bus, uarg);
-	case RS485_IOC_GET_CONFIG:
+	case N_RS485_IOC_GET_CONFIG:
 		return rs485_ioc_get_config(bus, uarg);
-	case RS485_IOC_SET_CONFIG:
+	case N_RS485_IOC_SET_CONFIG:
 		return rs485_ioc_set_config(bus, uarg);
-	case RS485_IOC_GET_STATS:
-		return rs485_ioc_get_stats(bus, uarg, sizeof(struct rs485_stats));
-	case RS485_IOC_GET_STATS_V1:
-		return rs485_ioc_get_stats(bus, uarg, _IOC_SIZE(RS485_IOC_GET_STATS_V1));
-	case RS485_IOC_GET_NODE:
+	case N_RS485_IOC_GET_STATS:
+		return rs485_ioc_get_stats(bus, uarg);
+	case N_RS485_IOC_GET_NODE:
 		return rs485_ioc_node(bus, uarg, false);
-	case RS485_IOC_RESET_NODE:
+	case N_RS485_IOC_RESET_NODE:
 		return rs485_ioc_node(bus, uarg, true);
 	case FIONREAD:
 		return rs485_ioc_fionread(bus, uarg);
@@ -373,13 +370,12 @@ int rs485_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg)
 int rs485_compat_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg)
 {
 	switch (cmd) {
-	case RS485_IOC_XFER:
-	case RS485_IOC_GET_CONFIG:
-	case RS485_IOC_SET_CONFIG:
-	case RS485_IOC_GET_STATS:
-	case RS485_IOC_GET_STATS_V1:
-	case RS485_IOC_GET_NODE:
-	case RS485_IOC_RESET_NODE:
+	case N_RS485_IOC_XFER:
+	case N_RS485_IOC_GET_CONFIG:
+	case N_RS485_IOC_SET_CONFIG:
+	case N_RS485_IOC_GET_STATS:
+	case N_RS485_IOC_GET_NODE:
+	case N_RS485_IOC_RESET_NODE:
 	case FIONREAD:
 		return rs485_ioctl(tty, cmd, (unsigned long)compat_ptr(arg));
 	default:

@@ -4,7 +4,7 @@
  * sends them and waits for the response, retries, outcomes and the per-node
  * error counters.
  *
- * Callers (RS485_IOC_XFER, write()) queue a request and sleep; the worker
+ * Callers (N_RS485_IOC_XFER, write()) queue a request and sleep; the worker
  * runs the requests one at a time in arrival order, so several processes
  * share the bus fairly. A caller that is interrupted leaves its request to
  * the worker: the frame on the wire is always finished and a late response
@@ -86,7 +86,7 @@ int rs485_req_wait(struct rs485_bus *bus, struct rs485_req *req)
 				       test_bit(TTY_LDISC_CHANGING, &tty->flags));
 	spin_lock_irqsave(&bus->lock, flags);
 	if (req->done) {
-		ret = bus->dead && req->status == RS485_ERROR ? -EIO : 0;
+		ret = bus->dead && req->status == N_RS485_ERROR ? -EIO : 0;
 	} else {
 		if (!ret)
 			ret = -EIO;	/* the discipline is being detached */
@@ -117,13 +117,13 @@ static void rs485_node_account(struct rs485_bus *bus, struct rs485_req *req)
 	if (!req->expect_resp)
 		return;
 	switch (req->status) {
-	case RS485_TIMEOUT:
-	case RS485_BADCRC:
+	case N_RS485_TIMEOUT:
+	case N_RS485_BADCRC:
 		*err = min(*err + RS485_ERR_FAIL, RS485_ERR_OFF);
 		break;
-	case RS485_OK:
-	case RS485_UNKINSTR:
-	case RS485_DEVERR:
+	case N_RS485_OK:
+	case N_RS485_UNKINSTR:
+	case N_RS485_DEVERR:
 		/* The node answers: an "off" node is back, else count down. */
 		if (*err >= RS485_ERR_OFF)
 			*err = 0;
@@ -135,15 +135,15 @@ static void rs485_node_account(struct rs485_bus *bus, struct rs485_req *req)
 	}
 }
 
-static u32 rs485_resp_status(const struct rs485_frame *resp)
+static u32 rs485_resp_status(const struct n_rs485_frame *resp)
 {
-	if (resp->flags & RS485_RESP_UNKINSTR)
-		return RS485_UNKINSTR;
-	if (resp->flags & RS485_RESP_DEVERR)
-		return RS485_DEVERR;
-	if (resp->flags & RS485_RESP_ACK)
-		return RS485_OK;
-	return RS485_ERROR;	/* a response that claims nothing */
+	if (resp->flags & N_RS485_RESP_UNKINSTR)
+		return N_RS485_UNKINSTR;
+	if (resp->flags & N_RS485_RESP_DEVERR)
+		return N_RS485_DEVERR;
+	if (resp->flags & N_RS485_RESP_ACK)
+		return N_RS485_OK;
+	return N_RS485_ERROR;	/* a response that claims nothing */
 }
 
 static bool rs485_resp_final(struct rs485_bus *bus)
@@ -186,11 +186,11 @@ static enum rs485_resp_state rs485_await(struct rs485_bus *bus, struct rs485_req
 
 static size_t rs485_req_encode(const struct rs485_req *req, bool resend, u8 *buf)
 {
-	size_t len = RS485_HEADER_LEN + req->frame.len;
+	size_t len = N_RS485_HEADER_LEN + req->frame.len;
 
 	memcpy(buf, &req->frame, len);
 	if (resend)
-		buf[2] |= RS485_REQ_RESEND;
+		buf[2] |= N_RS485_REQ_RESEND;
 	buf[len] = rs485_crc(buf, len);
 	return len + 1;
 }
@@ -212,7 +212,7 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 	u32 attempt;
 	int ret;
 
-	req->status = RS485_ERROR;
+	req->status = N_RS485_ERROR;
 	for (attempt = 0; attempt <= req->retries; attempt++) {
 		enum rs485_resp_state state;
 		size_t len;
@@ -222,7 +222,7 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 			bus->stats.retries++;
 			if (req->abandoned || bus->dead) {
 				spin_unlock_irqrestore(&bus->lock, flags);
-				req->status = RS485_ERROR;
+				req->status = N_RS485_ERROR;
 				return;
 			}
 			spin_unlock_irqrestore(&bus->lock, flags);
@@ -248,19 +248,19 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 				 * response to wait for. Repeat the request (after
 				 * the gap, like every request).
 				 */
-				req->status = RS485_COLLISION;
+				req->status = N_RS485_COLLISION;
 				continue;
 			}
-			req->status = RS485_ERROR;
+			req->status = N_RS485_ERROR;
 			return;
 		}
 		if (!req->expect_resp) {
-			req->status = RS485_OK;
+			req->status = N_RS485_OK;
 			return;
 		}
 		state = rs485_await(bus, req);
 		if (READ_ONCE(bus->dead)) {
-			req->status = RS485_ERROR;
+			req->status = N_RS485_ERROR;
 			return;
 		}
 		switch (state) {
@@ -277,7 +277,7 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 			 * retry of the request.
 			 */
 			resend = true;
-			req->status = RS485_BADCRC;
+			req->status = N_RS485_BADCRC;
 			break;
 		default:
 			/*
@@ -285,7 +285,7 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 			 * was, unless an earlier attempt set RESEND (sticky).
 			 */
 			rs485_count(bus, &bus->stats.timeouts);
-			req->status = RS485_TIMEOUT;
+			req->status = N_RS485_TIMEOUT;
 			break;
 		}
 	}
@@ -317,7 +317,7 @@ void rs485_xact_work(struct work_struct *work)
 		spin_lock_irqsave(&bus->lock, flags);
 		bus->cur = NULL;
 		if (!req->abandoned && req->is_xfer) {
-			if (req->status == RS485_OK)
+			if (req->status == N_RS485_OK)
 				bus->stats.xfers_ok++;
 			else
 				bus->stats.xfers_failed++;
@@ -343,7 +343,7 @@ void rs485_xact_kill(struct rs485_bus *bus)
 	list_for_each_entry_safe(req, tmp, &bus->queue, node) {
 		list_move_tail(&req->node, &failed);
 		bus->queued--;
-		req->status = RS485_ERROR;
+		req->status = N_RS485_ERROR;
 		if (req->is_xfer)
 			bus->stats.xfers_failed++;
 		WRITE_ONCE(req->done, true);
@@ -368,7 +368,7 @@ bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned in
 	bus->stats.rx_frames++;
 	req = bus->cur;
 	if (req && (bus->resp_state == RS485_RESP_WAIT || bus->resp_state == RS485_RESP_STARTED) &&
-	    !(frame[2] & RS485_RESP_EVENT) &&
+	    !(frame[2] & N_RS485_RESP_EVENT) &&
 	    frame[0] == req->frame.addr && frame[1] == req->frame.instr) {
 		memcpy(&req->resp, frame, len);
 		bus->resp_state = RS485_RESP_GOOD;

@@ -50,7 +50,7 @@ static void duration_from_env(void)
 static void child(int fd, int id, int out)
 {
 	struct result res = { 0 };
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	uint8_t data[64];
 	double end = now_s() + duration_s;
 	uint32_t seq = 0, len;
@@ -64,12 +64,12 @@ static void child(int fd, int id, int out)
 			data[i] = rand();
 		seq++;
 		if (xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, len, XFER_TIMEOUT_US, 2) ||
-		    x.status != RS485_OK) {
+		    x.status != N_RS485_OK) {
 			res.failed++;
 			continue;
 		}
 		if (x.resp.addr != SLAVE_ADDR || x.resp.instr != I_ECHO ||
-		    x.resp.flags != RS485_RESP_ACK)
+		    x.resp.flags != N_RS485_RESP_ACK)
 			res.wrong++;
 		else if (x.resp.len == len && !memcmp(x.resp.data, data, len))
 			res.ok++;
@@ -86,7 +86,7 @@ static void child(int fd, int id, int out)
 int main(void)
 {
 	struct result res[NPROC], sum = { 0 };
-	struct rs485_stats st;
+	struct n_rs485_stats st;
 	struct event_reader rd;
 	struct slave s;
 	int fd, pipes[NPROC][2], i, status, exits_ok = 1;

@@ -2,7 +2,7 @@
 /*
  * config - configuration and flushing (issue 18, items 4 and 6):
  *
- *  - RS485_IOC_GET_CONFIG answers while a long transaction (3 x 1 s of
+ *  - N_RS485_IOC_GET_CONFIG answers while a long transaction (3 x 1 s of
  *    timeouts) runs: it does not wait for the worker;
  *  - the bus rate at attach: the protocol's default (115200) on a port at its
  *    driver's initial speed, the port's speed when one was set: by
@@ -22,7 +22,7 @@
 struct pending {
 	int fd;
 	double end;		/* when the transaction returned */
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 };
 
 static void *pending_main(void *arg)
@@ -42,7 +42,7 @@ static void *pending_main(void *arg)
 static void get_config_during_xfer(int fd)
 {
 	struct pending p = { .fd = fd };
-	struct rs485_config c;
+	struct n_rs485_config c;
 	pthread_t t;
 	double t0, t1;
 	int ret;
@@ -50,7 +50,7 @@ static void get_config_during_xfer(int fd)
 	pthread_create(&t, NULL, pending_main, &p);
 	usleep(200000);
 	t0 = now_s();
-	ret = ioctl(fd, RS485_IOC_GET_CONFIG, &c);
+	ret = ioctl(fd, N_RS485_IOC_GET_CONFIG, &c);
 	t1 = now_s();
 	pthread_join(t, NULL);
 	tap_ok(ret == 0 && c.baud == 115200 && p.end - t1 > 1.0,
@@ -60,9 +60,9 @@ static void get_config_during_xfer(int fd)
 
 static uint32_t bus_baud(int fd)
 {
-	struct rs485_config c;
+	struct n_rs485_config c;
 
-	return ioctl(fd, RS485_IOC_GET_CONFIG, &c) ? 0 : c.baud;
+	return ioctl(fd, N_RS485_IOC_GET_CONFIG, &c) ? 0 : c.baud;
 }
 
 static int port_speed(int fd, speed_t sp)
@@ -79,7 +79,7 @@ static int port_speed(int fd, speed_t sp)
 static void attach_speed(void)
 {
 	struct termios t;
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	int fd, ld = N_TTY, ok;
 	pid_t pid;
 
@@ -95,7 +95,7 @@ static void attach_speed(void)
 	ok = !port_speed(fd, B57600) && !ioctl(fd, TIOCSETD, &ld);
 	tap_ok(ok && bus_baud(fd) == 57600 && !tcgetattr(fd, &t) && cfgetospeed(&t) == B57600,
 	       "attach keeps a speed set before it: 57600 Bd (%u)", bus_baud(fd));
-	ok = !xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, "57k6", 4, LONG_US, 0) && x.status == RS485_OK;
+	ok = !xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, "57k6", 4, LONG_US, 0) && x.status == N_RS485_OK;
 	tap_ok(ok, "a transaction at 57600 Bd works");
 	ld = N_TTY;
 	ioctl(fd, TIOCSETD, &ld);
@@ -135,7 +135,7 @@ static void attach_speed(void)
 /* Wait until the discipline has received @n more characters than @base. */
 static int wait_rx_bytes(int fd, uint64_t base, uint64_t n)
 {
-	struct rs485_stats st;
+	struct n_rs485_stats st;
 	double end = now_s() + 5;
 
 	do {
@@ -150,9 +150,9 @@ static int wait_rx_bytes(int fd, uint64_t base, uint64_t n)
 
 static void tciflush_resets_rx(struct slave *s)
 {
-	uint8_t ev[8], buf[RS485_MAX_FRAME];
+	uint8_t ev[8], buf[N_RS485_MAX_FRAME];
 	uint16_t w[9];
-	struct rs485_stats st;
+	struct n_rs485_stats st;
 	struct pollfd p;
 	int fd, ok;
 	ssize_t n;

@@ -2,11 +2,11 @@
 /*
  * echo - a 2-wire half-duplex bus whose transceiver keeps its receiver on:
  * the simulated UART hears every character it sends (TS7800_SIM_SET_ECHO).
- * Without RS485_CFG_ECHO the echo is taken for the response; with it the
+ * Without N_RS485_CFG_ECHO the echo is taken for the response; with it the
  * discipline discards the echo and every outcome is as on a quiet bus. A
  * frame that the bus does not carry as sent (simulated by corrupting what
  * the UART transmits, which the node and the echo both see) is a collision:
- * counted, retried as a plain repeat, RS485_COLLISION when every attempt
+ * counted, retried as a plain repeat, N_RS485_COLLISION when every attempt
  * collides. A missing echo is one as well.
  */
 #include "rs485-lib.h"
@@ -15,21 +15,21 @@
 
 static int set_echo_flag(int fd, int on)
 {
-	struct rs485_config cfg;
+	struct n_rs485_config cfg;
 
 	memset(&cfg, 0, sizeof(cfg));
-	if (ioctl(fd, RS485_IOC_GET_CONFIG, &cfg))
+	if (ioctl(fd, N_RS485_IOC_GET_CONFIG, &cfg))
 		return -1;
-	cfg.flags = on ? RS485_CFG_ECHO : 0;
-	return ioctl(fd, RS485_IOC_SET_CONFIG, &cfg);
+	cfg.flags = on ? N_RS485_CFG_ECHO : 0;
+	return ioctl(fd, N_RS485_IOC_SET_CONFIG, &cfg);
 }
 
 int main(void)
 {
-	struct rs485_stats st0, st;
-	struct rs485_config cfg;
-	uint8_t data[RS485_MAX_DATA], buf[RS485_MAX_FRAME];
-	struct rs485_xfer x;
+	struct n_rs485_stats st0, st;
+	struct n_rs485_config cfg;
+	uint8_t data[N_RS485_MAX_DATA], buf[N_RS485_MAX_FRAME];
+	struct n_rs485_xfer x;
 	struct slave s;
 	unsigned int exec0;
 	int fd, ret, i;
@@ -42,13 +42,13 @@ int main(void)
 		tap_bail("attach n_rs485, slave");
 	if (wire_set_echo(s.wfd, 1))
 		tap_bail("TS7800_SIM_SET_ECHO: %s", strerror(errno));
-	for (i = 0; i < RS485_MAX_DATA; i++)
+	for (i = 0; i < N_RS485_MAX_DATA; i++)
 		data[i] = i * 7 + 3;
 
 	/* The problem: the echo has the request's ADDR and INSTR. */
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 4, 300000, 0);
-	tap_ok(ret == 0 && x.status == RS485_ERROR && x.resp.flags == 0,
-	       "without RS485_CFG_ECHO the echo is taken for the response (status %u, flags %#x)",
+	tap_ok(ret == 0 && x.status == N_RS485_ERROR && x.resp.flags == 0,
+	       "without N_RS485_CFG_ECHO the echo is taken for the response (status %u, flags %#x)",
 	       x.status, x.resp.flags);
 	/* the node's real response went to read() */
 	usleep(50000);
@@ -63,31 +63,31 @@ int main(void)
 	cfg.gap_chars = 2;
 	cfg.flags = 0x2;
 	errno = 0;
-	tap_ok(ioctl(fd, RS485_IOC_SET_CONFIG, &cfg) && errno == EINVAL,
+	tap_ok(ioctl(fd, N_RS485_IOC_SET_CONFIG, &cfg) && errno == EINVAL,
 	       "unknown configuration flags: EINVAL");
 	ret = set_echo_flag(fd, 1);
 	memset(&cfg, 0, sizeof(cfg));
-	ioctl(fd, RS485_IOC_GET_CONFIG, &cfg);
-	tap_ok(ret == 0 && cfg.flags == RS485_CFG_ECHO, "RS485_CFG_ECHO set and read back");
+	ioctl(fd, N_RS485_IOC_GET_CONFIG, &cfg);
+	tap_ok(ret == 0 && cfg.flags == N_RS485_CFG_ECHO, "N_RS485_CFG_ECHO set and read back");
 
 	get_stats(fd, &st0);
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 255, 300000, 0);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.attempts == 1 && x.resp.len == 255 &&
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 1 && x.resp.len == 255 &&
 	       !memcmp(x.resp.data, data, 255),
 	       "with it, 255 bytes echoed by the node come back byte-exact (status %u, attempts %u)",
 	       x.status, x.attempts);
 	ret = xfer(fd, &x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, 20000, 2);
-	tap_ok(ret == 0 && x.status == RS485_TIMEOUT && x.attempts == 3,
+	tap_ok(ret == 0 && x.status == N_RS485_TIMEOUT && x.attempts == 3,
 	       "a silent node: TIMEOUT after 3 attempts (status %u, attempts %u)",
 	       x.status, x.attempts);
 	exec0 = s.executions[I_CORRUPT_ONCE];
 	ret = xfer(fd, &x, SLAVE_ADDR, I_CORRUPT_ONCE, 0, NULL, 0, 300000, 2);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.attempts == 2 && x.resp.data[0] == 0x5a &&
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 2 && x.resp.data[0] == 0x5a &&
 	       s.executions[I_CORRUPT_ONCE] == exec0 + 1,
 	       "a corrupted response: RESEND, the node executed once (status %u, attempts %u)",
 	       x.status, x.attempts);
-	ret = xfer(fd, &x, RS485_ADDR_BROADCAST, I_ECHO, 0, data, 3, RS485_DEFAULT, RS485_DEFAULT);
-	tap_ok(ret == 0 && x.status == RS485_OK, "broadcast: OK once its echo is back");
+	ret = xfer(fd, &x, N_RS485_ADDR_BROADCAST, I_ECHO, 0, data, 3, N_RS485_DEFAULT, N_RS485_DEFAULT);
+	tap_ok(ret == 0 && x.status == N_RS485_OK, "broadcast: OK once its echo is back");
 	get_stats(fd, &st);
 	tap_ok(st.collisions == st0.collisions && st.unexpected == st0.unexpected,
 	       "no collision and no echo delivered as a frame (collisions +%llu, unexpected +%llu)",
@@ -100,7 +100,7 @@ int main(void)
 	debugfs_write(PORT, "tx_corrupt", 1);
 	ret = xfer(fd, &x, SLAVE_ADDR, I_COUNT, 0, NULL, 0, 300000, 2);
 	get_stats(fd, &st);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.attempts == 2 &&
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 2 &&
 	       st.collisions == st0.collisions + 1 && s.executions[I_COUNT] == exec0 + 1,
 	       "a collision is counted and the request repeated: OK on attempt %u, collisions +%llu, executed %u time(s)",
 	       x.attempts, (unsigned long long)(st.collisions - st0.collisions),
@@ -112,21 +112,21 @@ int main(void)
 	ret = xfer(fd, &x, SLAVE_ADDR, I_COUNT, 0, NULL, 0, 300000, 2);
 	debugfs_write(PORT, "tx_corrupt", 0);
 	get_stats(fd, &st);
-	tap_ok(ret == 0 && x.status == RS485_COLLISION && x.attempts == 3 &&
+	tap_ok(ret == 0 && x.status == N_RS485_COLLISION && x.attempts == 3 &&
 	       st.collisions == st0.collisions + 3 && st.xfers_failed == st0.xfers_failed + 1 &&
 	       s.executions[I_COUNT] == exec0 + 1,
-	       "every attempt collides: RS485_COLLISION after 3 attempts (status %u, collisions +%llu), the node executed nothing",
+	       "every attempt collides: N_RS485_COLLISION after 3 attempts (status %u, collisions +%llu), the node executed nothing",
 	       x.status, (unsigned long long)(st.collisions - st0.collisions));
 
 	/* The flag on a bus that does not echo: the echo is missing. */
 	wire_set_echo(s.wfd, 0);
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 2, 300000, 0);
-	tap_ok(ret == 0 && x.status == RS485_COLLISION,
-	       "no echo although RS485_CFG_ECHO: RS485_COLLISION (status %u)", x.status);
+	tap_ok(ret == 0 && x.status == N_RS485_COLLISION,
+	       "no echo although N_RS485_CFG_ECHO: N_RS485_COLLISION (status %u)", x.status);
 	set_echo_flag(fd, 0);
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 2, 300000, 0);
 	get_stats(fd, &st);
-	tap_ok(ret == 0 && x.status == RS485_OK && st.xfers == st.xfers_ok + st.xfers_failed,
+	tap_ok(ret == 0 && x.status == N_RS485_OK && st.xfers == st.xfers_ok + st.xfers_failed,
 	       "flag off again on a quiet bus: OK; xfers %llu = ok %llu + failed %llu",
 	       (unsigned long long)st.xfers, (unsigned long long)st.xfers_ok,
 	       (unsigned long long)st.xfers_failed);

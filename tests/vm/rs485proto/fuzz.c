@@ -14,8 +14,8 @@
 int main(void)
 {
 	static uint16_t w[NOISE_CHARS / BURSTS * 2 + 16];
-	struct rs485_stats st;
-	struct rs485_xfer x;
+	struct n_rs485_stats st;
+	struct n_rs485_xfer x;
 	struct event_reader rd;
 	struct slave s;
 	uint32_t rng = 0x2545f491;
@@ -77,7 +77,7 @@ int main(void)
 	if (slave_start(&s, PORT))
 		tap_bail("slave");
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, f, 8, 300000, 2);
-	tap_ok(ret == 0 && x.status == RS485_OK && !memcmp(x.resp.data, f, 8),
+	tap_ok(ret == 0 && x.status == N_RS485_OK && !memcmp(x.resp.data, f, 8),
 	       "a transaction works after the fuzzing");
 	slave_stop(&s);
 	close(fd);

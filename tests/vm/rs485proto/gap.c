@@ -32,31 +32,31 @@ static struct line_scan ls;
 
 static int set_baud(int fd, uint32_t baud)
 {
-	struct rs485_config c;
+	struct n_rs485_config c;
 
-	if (ioctl(fd, RS485_IOC_GET_CONFIG, &c))
+	if (ioctl(fd, N_RS485_IOC_GET_CONFIG, &c))
 		return -1;
 	c.baud = baud;
-	return ioctl(fd, RS485_IOC_SET_CONFIG, &c);
+	return ioctl(fd, N_RS485_IOC_SET_CONFIG, &c);
 }
 
 static void at_rate(int fd, int wfd, struct slave *s, uint32_t baud)
 {
 	unsigned int i, bad = 0, late = 0, early = 0, taken = 0;
 	int64_t min, two;
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	char what[96];
 
 	if (set_baud(fd, baud))
-		tap_bail("RS485_IOC_SET_CONFIG %u Bd", baud);
+		tap_bail("N_RS485_IOC_SET_CONFIG %u Bd", baud);
 
 	/* after good responses and after bad-CRC responses (RESEND) */
 	line_scan_start(&ls, wfd);
 	for (i = 0; i < ROUNDS; i++) {
 		bad += xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, "gap", 3, LONG_US, 0) ||
-		       x.status != RS485_OK;
+		       x.status != N_RS485_OK;
 		bad += xfer(fd, &x, SLAVE_ADDR, I_CORRUPT, 0, NULL, 0, LONG_US, 2) ||
-		       x.status != RS485_BADCRC || x.attempts != 3;
+		       x.status != N_RS485_BADCRC || x.attempts != 3;
 		line_scan_read(&ls);
 	}
 	two = 2 * (int64_t)ls.char_ns;
@@ -71,7 +71,7 @@ static void at_rate(int fd, int wfd, struct slave *s, uint32_t baud)
 	line_scan_start(&ls, wfd);
 	for (i = 0, bad = 0; i < ROUNDS; i++) {
 		bad += xfer(fd, &x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, 100, 2) ||
-		       x.status != RS485_TIMEOUT || x.attempts != 3;
+		       x.status != N_RS485_TIMEOUT || x.attempts != 3;
 		line_scan_read(&ls);
 	}
 	snprintf(what, sizeof(what), "%u Bd: idle before a repeat after a 100 us timeout", baud);
@@ -85,7 +85,7 @@ static void at_rate(int fd, int wfd, struct slave *s, uint32_t baud)
 	line_scan_start(&ls, wfd);
 	for (i = 0, bad = 0; i < ROUNDS; i++) {
 		bad += xfer(fd, &x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, TIMEOUT_US, 1) ||
-		       x.status != RS485_TIMEOUT || x.attempts != 2;
+		       x.status != N_RS485_TIMEOUT || x.attempts != 2;
 		line_scan_read(&ls);
 	}
 	snprintf(what, sizeof(what), "%u Bd: request end to repeat, %u us timeout", baud,
@@ -103,7 +103,7 @@ static void at_rate(int fd, int wfd, struct slave *s, uint32_t baud)
 		int ok;
 
 		ok = !xfer(fd, &x, SLAVE_ADDR, I_DELAY, 0, NULL, 0, TIMEOUT_US, 0) &&
-		     x.status == RS485_OK;
+		     x.status == N_RS485_OK;
 		line_scan_read(&ls);
 		if (ls.nresp != n0 + 1 ||
 		    ls.resp_ns[n0] > (int64_t)TIMEOUT_US * 1000 - MARGIN_NS) {

@@ -5,8 +5,9 @@
  * a page end) and random contents, also the real commands with random
  * contents: only clean errors (EINVAL, EFAULT, ENOTTY) or success, and the
  * bus works afterwards. Also checks at compile time that the UAPI layout is
- * the one documented (same on 32-bit user space), and that a program built
- * with the first, 136-byte struct rs485_stats still gets its statistics.
+ * the one documented (same on 32-bit user space), and that the ioctl codes
+ * are our own: the discipline's and the simulator's old numbers (magic 0xB5,
+ * rpmsg's, and 0xB4, gpio's, in ioctl-number.rst) are refused.
  */
 #include <sys/mman.h>
 #include <stddef.h>
@@ -16,19 +17,19 @@
 #define PORT	0
 #define ROUNDS	20000
 
-_Static_assert(sizeof(struct rs485_frame) == 260, "rs485_frame layout");
-_Static_assert(sizeof(struct rs485_xfer) == 536, "rs485_xfer layout");
-_Static_assert(offsetof(struct rs485_xfer, timeout_us) == 520, "rs485_xfer layout");
-_Static_assert(offsetof(struct rs485_xfer, attempts) == 532, "rs485_xfer layout");
-_Static_assert(sizeof(struct rs485_config) == 32, "rs485_config layout");
-_Static_assert(offsetof(struct rs485_config, flags) == 16, "rs485_config layout");
-_Static_assert(sizeof(struct rs485_stats) == 18 * 8, "rs485_stats layout");
-_Static_assert(offsetof(struct rs485_stats, collisions) == 17 * 8, "rs485_stats layout");
-_Static_assert(sizeof(struct rs485_node) == 8, "rs485_node layout");
+_Static_assert(sizeof(struct n_rs485_frame) == 260, "n_rs485_frame layout");
+_Static_assert(sizeof(struct n_rs485_xfer) == 536, "n_rs485_xfer layout");
+_Static_assert(offsetof(struct n_rs485_xfer, timeout_us) == 520, "n_rs485_xfer layout");
+_Static_assert(offsetof(struct n_rs485_xfer, attempts) == 532, "n_rs485_xfer layout");
+_Static_assert(sizeof(struct n_rs485_config) == 32, "n_rs485_config layout");
+_Static_assert(offsetof(struct n_rs485_config, flags) == 16, "n_rs485_config layout");
+_Static_assert(sizeof(struct n_rs485_stats) == 18 * 8, "n_rs485_stats layout");
+_Static_assert(offsetof(struct n_rs485_stats, collisions) == 17 * 8, "n_rs485_stats layout");
+_Static_assert(sizeof(struct n_rs485_node) == 8, "n_rs485_node layout");
 
 static const unsigned int real_cmds[] = {
-	RS485_IOC_XFER, RS485_IOC_GET_CONFIG, RS485_IOC_SET_CONFIG, RS485_IOC_GET_STATS,
-	RS485_IOC_GET_NODE, RS485_IOC_RESET_NODE, FIONREAD,
+	N_RS485_IOC_XFER, N_RS485_IOC_GET_CONFIG, N_RS485_IOC_SET_CONFIG, N_RS485_IOC_GET_STATS,
+	N_RS485_IOC_GET_NODE, N_RS485_IOC_RESET_NODE, FIONREAD,
 };
 
 static uint32_t rng = 0x9e3779b9;
@@ -43,9 +44,9 @@ static uint32_t rnd(void)
 
 int main(void)
 {
-	struct rs485_config defcfg;
+	struct n_rs485_config defcfg;
 	unsigned int ok = 0, clean = 0, bad = 0, i;
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	struct slave s;
 	uint8_t *page;
 	int fd, ret;
@@ -57,7 +58,7 @@ int main(void)
 	if (fd < 0 || slave_start(&s, PORT))
 		tap_bail("attach n_rs485, slave");
 	memset(&defcfg, 0, sizeof(defcfg));
-	ioctl(fd, RS485_IOC_GET_CONFIG, &defcfg);
+	ioctl(fd, N_RS485_IOC_GET_CONFIG, &defcfg);
 	/* two pages, the second inaccessible: arguments that straddle it fault */
 	page = mmap(NULL, 8192, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
 	if (page == MAP_FAILED || mprotect(page + 4096, 4096, PROT_NONE))
@@ -70,7 +71,7 @@ int main(void)
 		if (rnd() % 2)
 			cmd = real_cmds[rnd() % (sizeof(real_cmds) / sizeof(real_cmds[0]))];
 		else
-			cmd = _IOC(rnd() % 4, RS485_IOC_MAGIC, rnd() % 16, size);
+			cmd = _IOC(rnd() % 4, N_RS485_IOC_MAGIC, rnd() % 16, size);
 		for (off = 0; off < 4096; off += 4)
 			*(uint32_t *)(page + off) = rnd();
 		switch (rnd() % 6) {
@@ -90,9 +91,9 @@ int main(void)
 			arg = page + rnd() % 8;			/* valid, maybe unaligned */
 			break;
 		}
-		if (cmd == RS485_IOC_XFER && (uint8_t *)arg >= page &&
+		if (cmd == N_RS485_IOC_XFER && (uint8_t *)arg >= page &&
 		    (uint8_t *)arg < page + 3000) {
-			struct rs485_xfer *px = arg;
+			struct n_rs485_xfer *px = arg;
 
 			/* keep valid transactions short */
 			px->timeout_us = 100 + rnd() % 2000;
@@ -102,8 +103,8 @@ int main(void)
 		ret = ioctl(fd, cmd, arg);
 		if (!ret) {
 			ok++;
-			if (cmd == RS485_IOC_SET_CONFIG)
-				ioctl(fd, RS485_IOC_SET_CONFIG, &defcfg);
+			if (cmd == N_RS485_IOC_SET_CONFIG)
+				ioctl(fd, N_RS485_IOC_SET_CONFIG, &defcfg);
 		} else if (errno == EINVAL || errno == EFAULT || errno == ENOTTY) {
 			clean++;
 		} else {
@@ -116,21 +117,21 @@ int main(void)
 	tap_ok(bad == 0, "only clean errors (EINVAL, EFAULT, ENOTTY) or success");
 	tap_ok(ok > 0 && clean > 0, "both successes and errors were exercised");
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, "abc", 3, 300000, 2);
-	tap_ok(ret == 0 && x.status == RS485_OK && !memcmp(x.resp.data, "abc", 3),
+	tap_ok(ret == 0 && x.status == N_RS485_OK && !memcmp(x.resp.data, "abc", 3),
 	       "the bus works after the fuzzing");
 	{
-		/* RS485_IOC_GET_STATS as compiled before collisions was added */
-		unsigned int old_cmd = _IOC(_IOC_READ, RS485_IOC_MAGIC, 4, 136);
-		uint64_t old[18];
-		struct rs485_stats st;
+		struct n_rs485_stats st;
+		struct ts7800_sim_wire_stats ws;
+		int r1, e1, r2, e2;
 
-		memset(old, 0xa5, sizeof(old));
-		get_stats(fd, &st);
-		ret = ioctl(fd, old_cmd, old);
-		tap_ok(ret == 0 && old[9] == st.xfers && old[0] >= st.tx_frames &&
-		       old[17] == 0xa5a5a5a5a5a5a5a5ull,
-		       "the 136-byte RS485_IOC_GET_STATS of older programs still works (xfers %llu), nothing written past it",
-		       (unsigned long long)old[9]);
+		r1 = ioctl(fd, _IOR(0xb5, 4, struct n_rs485_stats), &st);
+		e1 = errno;
+		r2 = ioctl(s.wfd, _IOR(0xb4, 1, struct ts7800_sim_wire_stats), &ws);
+		e2 = errno;
+		tap_ok(N_RS485_IOC_MAGIC != 0xb5 && TS7800_SIM_IOC_MAGIC != 0xb4 &&
+		       r1 == -1 && e1 == ENOTTY && r2 == -1 && e2 == ENOTTY,
+		       "the old codes (0xB5 statistics, 0xB4 wire statistics) are refused: %s, %s",
+		       r1 ? strerror(e1) : "served", r2 ? strerror(e2) : "served");
 	}
 	slave_stop(&s);
 	munmap(page, 8192);

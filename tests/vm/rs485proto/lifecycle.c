@@ -21,7 +21,7 @@ static void on_alarm(int sig)
 struct pending {
 	int fd;
 	int ret, err;
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 };
 
 static void *pending_main(void *arg)
@@ -52,7 +52,7 @@ static void pending_vs(int fd, const char *what, int (*act)(int fd))
 struct queued {
 	int fd;
 	int ret;
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 };
 
 static void *queued_main(void *arg)
@@ -88,7 +88,7 @@ int main(void)
 {
 	struct sigaction sa;
 	struct itimerval it;
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	struct slave s;
 	uint8_t d[4] = { 1, 2, 3, 4 };
 	int fd, fd2, ret, err;
@@ -115,14 +115,14 @@ int main(void)
 	       "a signal ends the caller's wait with EINTR (%.3f s)", now_s() - t0);
 	d[0] = 9;
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, d, 4, 500000, 0);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.resp.instr == I_ECHO && x.resp.len == 4 &&
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.resp.instr == I_ECHO && x.resp.len == 4 &&
 	       !memcmp(x.resp.data, d, 4),
 	       "the next caller gets its own response, not the late one");
 
 	/* rmmod while attached */
 	tap_ok(sh("rmmod n_rs485 2>/dev/null") != 0, "rmmod is refused while attached");
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, d, 4, 500000, 0);
-	tap_ok(ret == 0 && x.status == RS485_OK, "...and the bus still works");
+	tap_ok(ret == 0 && x.status == N_RS485_OK, "...and the bus still works");
 
 	/* another process opens the tty while a request waits in the queue */
 	{
@@ -136,7 +136,7 @@ int main(void)
 		fd3 = open("/dev/ttyTSU0", O_RDWR | O_NOCTTY);
 		pthread_join(tq, NULL);
 		pthread_join(ts, NULL);
-		tap_ok(fd3 >= 0 && q.ret == 0 && q.x.status == RS485_OK && q.x.resp.instr == I_ECHO &&
+		tap_ok(fd3 >= 0 && q.ret == 0 && q.x.status == N_RS485_OK && q.x.resp.instr == I_ECHO &&
 		       q.x.resp.len == 6 && !memcmp(q.x.resp.data, "queued", 6),
 		       "a queued request survives another open() of the tty (slow one: ret %d)",
 		       slow.ret);
@@ -150,7 +150,7 @@ int main(void)
 	fd2 = open("/dev/ttyTSU0", O_RDWR | O_NOCTTY);
 	{
 		int ld = N_RS485_DEFAULT_LDISC;
-		uint8_t buf[RS485_MAX_FRAME];
+		uint8_t buf[N_RS485_MAX_FRAME];
 
 		ioctl(fd, TIOCSETD, &ld);
 		if (!fork()) {
@@ -182,7 +182,7 @@ int main(void)
 	/* a new open works again */
 	fd = bus_open(PORT);
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, d, 4, 500000, 0);
-	tap_ok(fd >= 0 && ret == 0 && x.status == RS485_OK, "reopen + attach after hangup works");
+	tap_ok(fd >= 0 && ret == 0 && x.status == N_RS485_OK, "reopen + attach after hangup works");
 	/* close with a transaction pending in another thread is the test's exit */
 	slave_stop(&s);
 	close(fd);

@@ -8,7 +8,7 @@
  * or by an overrun of the UART's RX FIFO (the simulated CPU ignores
  * interrupts meanwhile); the retry must be a RESEND, the instruction runs
  * once. RESEND, once set, stays set for later retries (also after a timeout
- * of the RESEND). The last attempt's cut response ends as RS485_BADCRC.
+ * of the RESEND). The last attempt's cut response ends as N_RS485_BADCRC.
  * Every request, retries included, follows the previous frame after at
  * least 2 idle characters (line log of the wire).
  */
@@ -24,17 +24,17 @@ static void cut_case(int fd, struct slave *s, uint8_t instr, const char *how, ui
 		     unsigned int mute, uint32_t want_status, uint32_t want_attempts)
 {
 	unsigned int e0 = s->executions[instr], r0 = s->resends;
-	struct rs485_stats st0, st1;
-	struct rs485_xfer x;
+	struct n_rs485_stats st0, st1;
+	struct n_rs485_xfer x;
 	int ret;
 
 	s->mute_resends = mute;
 	if (get_stats(fd, &st0))
-		tap_bail("RS485_IOC_GET_STATS");
+		tap_bail("N_RS485_IOC_GET_STATS");
 	ret = xfer(fd, &x, SLAVE_ADDR, instr, 0, NULL, 0, LONG_US, retries);
 	line_scan_read(&ls);
 	if (get_stats(fd, &st1))
-		tap_bail("RS485_IOC_GET_STATS");
+		tap_bail("N_RS485_IOC_GET_STATS");
 	/* The cut itself, as the discipline saw it. */
 	if (instr == I_CUT_BREAK && st1.rx_framing == st0.rx_framing)
 		tap_diag("the break did not reach the discipline as a break");
@@ -47,8 +47,8 @@ static void cut_case(int fd, struct slave *s, uint8_t instr, const char *how, ui
 	       "cut by %s%s: status %u (want %u), attempts %u (want %u), executed %u time(s), "
 	       "%u RESEND(s)", how, mute ? " + RESEND unanswered" : "", x.status, want_status,
 	       x.attempts, want_attempts, s->executions[instr] - e0, s->resends - r0);
-	if (want_status == RS485_OK)
-		tap_ok(ret == 0 && x.status == RS485_OK &&
+	if (want_status == N_RS485_OK)
+		tap_ok(ret == 0 && x.status == N_RS485_OK &&
 		       x.resp.len == (instr == I_CUT_OVERRUN ? OVERRUN_DATA : CUT_DATA) &&
 		       x.resp.data[0] == instr, "...and the RESEND's answer is the whole response");
 	s->mute_resends = 0;
@@ -56,7 +56,7 @@ static void cut_case(int fd, struct slave *s, uint8_t instr, const char *how, ui
 
 int main(void)
 {
-	struct rs485_stats st;
+	struct n_rs485_stats st;
 	struct slave s;
 	int fd, wfd;
 	int64_t min;
@@ -65,17 +65,17 @@ int main(void)
 	fd = bus_logged_setup(PORT, &s, &wfd);
 	line_scan_start(&ls, wfd);
 
-	cut_case(fd, &s, I_CUT_SILENT, "silence", 2, 0, RS485_OK, 2);
-	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 0, RS485_OK, 2);
-	cut_case(fd, &s, I_CUT_BREAK, "a break", 2, 0, RS485_OK, 2);
-	cut_case(fd, &s, I_CUT_OVERRUN, "an RX FIFO overrun", 2, 0, RS485_OK, 2);
+	cut_case(fd, &s, I_CUT_SILENT, "silence", 2, 0, N_RS485_OK, 2);
+	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 0, N_RS485_OK, 2);
+	cut_case(fd, &s, I_CUT_BREAK, "a break", 2, 0, N_RS485_OK, 2);
+	cut_case(fd, &s, I_CUT_OVERRUN, "an RX FIFO overrun", 2, 0, N_RS485_OK, 2);
 	tap_ok(s.overrun_missed == 0, "the overrun happened (UART reported it in time: %u missed)",
 	       s.overrun_missed);
 	/* sticky RESEND: cut, the RESEND times out, the next retry is a RESEND again */
-	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 1, RS485_OK, 3);
-	cut_case(fd, &s, I_CUT_SILENT, "silence", 2, 2, RS485_TIMEOUT, 3);
+	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 1, N_RS485_OK, 3);
+	cut_case(fd, &s, I_CUT_SILENT, "silence", 2, 2, N_RS485_TIMEOUT, 3);
 	/* no retry left: the cut response is the outcome */
-	cut_case(fd, &s, I_CUT_BREAK, "a break", 0, 0, RS485_BADCRC, 1);
+	cut_case(fd, &s, I_CUT_BREAK, "a break", 0, 0, N_RS485_BADCRC, 1);
 
 	line_scan_read(&ls);
 	min = line_report("idle before a request after a response", ls.gap_ns, ls.ngaps);
@@ -85,7 +85,7 @@ int main(void)
 	       "(min %lld ns, %u gaps, %u log events dropped)", 2 * ls.char_ns, (long long)min,
 	       ls.ngaps, ls.dropped);
 	if (get_stats(fd, &st))
-		tap_bail("RS485_IOC_GET_STATS");
+		tap_bail("N_RS485_IOC_GET_STATS");
 	tap_ok(st.xfers == st.xfers_ok + st.xfers_failed,
 	       "statistics add up (xfers %llu, truncated %llu, overruns %llu, framing %llu)",
 	       (unsigned long long)st.xfers, (unsigned long long)st.rx_truncated,

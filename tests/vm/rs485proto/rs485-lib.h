@@ -122,7 +122,7 @@ static inline size_t frame_words(const uint8_t *f, size_t n, uint8_t crc_xor, ui
 
 static inline int wire_send_frame(int wfd, const uint8_t *f, size_t n, uint8_t crc_xor)
 {
-	uint16_t w[RS485_MAX_FRAME + 1] = { 0 };
+	uint16_t w[N_RS485_MAX_FRAME + 1] = { 0 };
 
 	return wire_write_all(wfd, w, frame_words(f, n, crc_xor, w));
 }
@@ -138,10 +138,10 @@ struct slave {
 	atomic_uint executions[256];	/* per instruction, RESEND not counted */
 	atomic_uint bad_frames;		/* CRC errors, bad 9th bits, truncation */
 	atomic_uint broadcasts;
-	uint8_t last[RS485_MAX_FRAME];	/* last request (guarded by last_lock) */
+	uint8_t last[N_RS485_MAX_FRAME];	/* last request (guarded by last_lock) */
 	size_t last_len;
 	pthread_mutex_t last_lock;
-	uint8_t last_resp[RS485_MAX_FRAME];	/* for RESEND */
+	uint8_t last_resp[N_RS485_MAX_FRAME];	/* for RESEND */
 	size_t last_resp_len;
 	pthread_mutex_t send_lock;	/* one frame at a time on the wire */
 	atomic_uint mute_resends;	/* leave this many RESENDs unanswered */
@@ -165,7 +165,7 @@ static inline size_t event_frame(uint32_t seq, uint8_t *f)
 {
 	f[0] = SLAVE_ADDR;
 	f[1] = 0x41;
-	f[2] = RS485_RESP_EVENT;
+	f[2] = N_RS485_RESP_EVENT;
 	f[3] = 4;
 	memcpy(f + 4, &seq, 4);
 	return 8;
@@ -219,19 +219,19 @@ static inline void slave_send_overrun(struct slave *s, const uint8_t *f, size_t 
 
 static inline void slave_answer(struct slave *s, const uint8_t *req)
 {
-	uint8_t r[RS485_MAX_FRAME];
+	uint8_t r[N_RS485_MAX_FRAME];
 	uint8_t ev[8];
 	uint8_t instr = req[1], xor = 0;
 	size_t len = 0;
 	uint32_t cnt;
 
-	if (req[0] == RS485_ADDR_BROADCAST) {
+	if (req[0] == N_RS485_ADDR_BROADCAST) {
 		s->broadcasts++;
 		return;
 	}
 	if (req[0] != SLAVE_ADDR)
 		return;
-	if (req[2] & RS485_REQ_RESEND) {
+	if (req[2] & N_RS485_REQ_RESEND) {
 		s->resends++;
 		if (s->mute_resends) {
 			s->mute_resends--;
@@ -243,11 +243,11 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		return;
 	}
 	s->executions[instr]++;
-	if (req[2] & RS485_REQ_NOACK)
+	if (req[2] & N_RS485_REQ_NOACK)
 		return;
 	r[0] = SLAVE_ADDR;
 	r[1] = instr;
-	r[2] = RS485_RESP_ACK;
+	r[2] = N_RS485_RESP_ACK;
 	switch (instr) {
 	case I_SLOW:
 		usleep(100000);
@@ -264,10 +264,10 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 	case I_SILENT:
 		return;
 	case I_UNKNOWN:
-		r[2] = RS485_RESP_UNKINSTR;
+		r[2] = N_RS485_RESP_UNKINSTR;
 		break;
 	case I_DEVERR:
-		r[2] = RS485_RESP_DEVERR;
+		r[2] = N_RS485_RESP_DEVERR;
 		r[4] = 0xde;
 		r[5] = 0xad;
 		len = 2;
@@ -299,14 +299,14 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		memset(r + 4, instr, len);
 		break;
 	default:
-		r[2] = RS485_RESP_UNKINSTR;
+		r[2] = N_RS485_RESP_UNKINSTR;
 		break;
 	}
 	r[3] = len;
 	if (instr == I_EVENT_FIRST) {
 		ev[0] = SLAVE_ADDR;
 		ev[1] = instr;
-		ev[2] = RS485_RESP_EVENT;
+		ev[2] = N_RS485_RESP_EVENT;
 		ev[3] = 2;
 		ev[4] = req[3];
 		ev[5] = 0xee;
@@ -337,7 +337,7 @@ static inline void *slave_main(void *arg)
 {
 	struct slave *s = arg;
 	struct pollfd p = { .fd = s->wfd, .events = POLLIN };
-	uint8_t f[RS485_MAX_FRAME + 1];
+	uint8_t f[N_RS485_MAX_FRAME + 1];
 	uint16_t w[512];
 	size_t pos = 0;
 	int in_frame = 0;
@@ -432,7 +432,7 @@ static inline void *event_reader_main(void *arg)
 {
 	struct event_reader *r = arg;
 	struct pollfd p = { .fd = r->fd, .events = POLLIN };
-	uint8_t buf[RS485_MAX_FRAME], want[8];
+	uint8_t buf[N_RS485_MAX_FRAME], want[8];
 	uint32_t seq;
 	ssize_t n;
 
@@ -442,7 +442,7 @@ static inline void *event_reader_main(void *arg)
 		n = read(r->fd, buf, sizeof(buf));
 		if (n <= 0)
 			continue;
-		if (!(buf[2] & RS485_RESP_EVENT)) {
+		if (!(buf[2] & N_RS485_RESP_EVENT)) {
 			r->non_event++;
 			continue;
 		}
@@ -598,7 +598,7 @@ static inline void bus_logged_teardown(int fd, int wfd, struct slave *s)
 }
 
 /* One transaction; returns the ioctl result, the outcome in x. */
-static inline int xfer(int fd, struct rs485_xfer *x, uint8_t addr, uint8_t instr, uint8_t flags,
+static inline int xfer(int fd, struct n_rs485_xfer *x, uint8_t addr, uint8_t instr, uint8_t flags,
 		       const void *data, uint8_t len, uint32_t timeout_us, uint32_t retries)
 {
 	memset(x, 0, sizeof(*x));
@@ -610,13 +610,13 @@ static inline int xfer(int fd, struct rs485_xfer *x, uint8_t addr, uint8_t instr
 		memcpy(x->req.data, data, len);
 	x->timeout_us = timeout_us;
 	x->retries = retries;
-	return ioctl(fd, RS485_IOC_XFER, x);
+	return ioctl(fd, N_RS485_IOC_XFER, x);
 }
 
-static inline int get_stats(int fd, struct rs485_stats *st)
+static inline int get_stats(int fd, struct n_rs485_stats *st)
 {
 	memset(st, 0, sizeof(*st));
-	return ioctl(fd, RS485_IOC_GET_STATS, st);
+	return ioctl(fd, N_RS485_IOC_GET_STATS, st);
 }
 
 #endif /* RS485_LIB_H */

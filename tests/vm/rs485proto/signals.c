@@ -18,9 +18,10 @@
  * norestart, EINTR may also come from a withdrawn request, so there
  * executions are at least the successes and at most successes + EINTR.
  *
- * RS485_SIGNAL_XFERS (environment) is the number of transactions over all
- * four modes; by default 10000 on the debug kernel (the lane the issue's
- * acceptance asks for) and 1000 elsewhere. The time taken is reported.
+ * The number of transactions over all four modes is RS485_SIGNAL_XFERS
+ * (environment) or rs485_signal_xfers=N on the kernel command line
+ * (VMTEST_APPEND); by default 10000 on the debug kernel (the lane the
+ * issue's acceptance asks for) and 1000 elsewhere. The time is reported.
  */
 #include <signal.h>
 #include <sys/ptrace.h>
@@ -50,17 +51,38 @@ static void on_usr1(int sig)
 	handled++;
 }
 
+/* rs485_signal_xfers=N on the kernel command line (VMTEST_APPEND), or "". */
+static const char *xfers_from_cmdline(char *buf, size_t size)
+{
+	FILE *f = fopen("/proc/cmdline", "r");
+	char *p = NULL;
+
+	buf[0] = 0;
+	if (f && fgets(buf, size, f))
+		p = strstr(buf, "rs485_signal_xfers=");
+	if (f)
+		fclose(f);
+	if (!p)
+		return "";
+	p += strlen("rs485_signal_xfers=");
+	p[strcspn(p, " \n")] = 0;
+	return p;
+}
+
 static unsigned int xfers_from_env(void)
 {
 	const char *s = getenv("RS485_SIGNAL_XFERS");
 	struct utsname u;
 	unsigned long v;
+	char cmdline[4096];
 	char *end;
 
-	if (s && *s) {
+	if (!s || !*s)
+		s = xfers_from_cmdline(cmdline, sizeof(cmdline));
+	if (*s) {
 		v = strtoul(s, &end, 10);
 		if (*end || v < M_NR || v > 10000000)
-			tap_bail("RS485_SIGNAL_XFERS=%s: want 4..10000000", s);
+			tap_bail("transaction count %s: want 4..10000000", s);
 		return v;
 	}
 	if (!uname(&u) && strstr(u.release, "advee-debug"))
@@ -73,7 +95,7 @@ static void child_run(int fd, enum mode m, unsigned int n, int out)
 {
 	struct sigaction sa = { .sa_handler = on_usr1 };
 	struct tally t = { 0 };
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	unsigned int i;
 	double t0 = now_s();
 	int ret;
@@ -83,9 +105,9 @@ static void child_run(int fd, enum mode m, unsigned int n, int out)
 	sigaction(SIGUSR1, &sa, NULL);
 	for (i = 0; i < n; i++) {
 		ret = xfer(fd, &x, SLAVE_ADDR, I_COUNT, 0, NULL, 0, XFER_TIMEOUT_US, 0);
-		if (ret == 0 && x.status == RS485_OK)
+		if (ret == 0 && x.status == N_RS485_OK)
 			t.ok++;
-		else if (ret == 0 && x.status == RS485_TIMEOUT)
+		else if (ret == 0 && x.status == N_RS485_TIMEOUT)
 			t.timeout++;
 		else if (ret == -1 && errno == EINTR)
 			t.eintr++;
@@ -118,13 +140,13 @@ struct hog {
 static void *hog_main(void *arg)
 {
 	struct hog *h = arg;
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 
 	while (!h->stop) {
 		/* Often enough that the child's request is sometimes queued. */
 		pause_random(h->max_us);
 		if (xfer(h->fd, &x, SLAVE_ADDR, HOG_INSTR, 0, "hog", 3, XFER_TIMEOUT_US, 0) ||
-		    x.status != RS485_OK)
+		    x.status != N_RS485_OK)
 			h->bad++;
 		h->done++;
 	}
@@ -161,7 +183,7 @@ static int disturb(pid_t pid, enum mode m, unsigned int max_us)
 /* Mean time of one undisturbed transaction while the hog runs, in us. */
 static unsigned int calibrate(int fd)
 {
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	double t0 = now_s();
 	int i;
 
@@ -173,7 +195,7 @@ static unsigned int calibrate(int fd)
 static void run_mode(int fd, struct slave *s, enum mode m, unsigned int n, unsigned int max_us)
 {
 	unsigned int e0 = s->executions[I_COUNT], executed, sent = 0, delivered = 0;
-	struct rs485_xfer x;
+	struct n_rs485_xfer x;
 	struct tally t = { 0 };
 	int pfd[2], st;
 	pid_t pid;
@@ -225,7 +247,7 @@ static void run_mode(int fd, struct slave *s, enum mode m, unsigned int n, unsig
 int main(void)
 {
 	unsigned int n = xfers_from_env(), max_us;
-	struct rs485_stats st;
+	struct n_rs485_stats st;
 	struct slave s;
 	struct hog h = { 0 };
 	double t0;
@@ -256,7 +278,7 @@ int main(void)
 
 	tap_ok(h.bad == 0, "the other caller's %u transactions all OK (%u not)", h.done, h.bad);
 	if (get_stats(h.fd, &st))
-		tap_bail("RS485_IOC_GET_STATS");
+		tap_bail("N_RS485_IOC_GET_STATS");
 	tap_ok(st.xfers == st.xfers_ok + st.xfers_failed,
 	       "statistics add up: xfers %llu = ok %llu + failed %llu",
 	       (unsigned long long)st.xfers, (unsigned long long)st.xfers_ok,

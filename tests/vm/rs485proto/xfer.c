@@ -16,7 +16,7 @@
 static int check_frame_read(int fd, const uint8_t *expect, size_t n, const char *what)
 {
 	struct pollfd p = { .fd = fd, .events = POLLIN };
-	uint8_t buf[RS485_MAX_FRAME];
+	uint8_t buf[N_RS485_MAX_FRAME];
 	ssize_t r;
 
 	if (poll(&p, 1, 2000) != 1)
@@ -32,9 +32,9 @@ static int check_frame_read(int fd, const uint8_t *expect, size_t n, const char 
 int main(void)
 {
 	struct termios before, during, after;
-	struct rs485_stats st;
-	struct rs485_xfer x;
-	struct rs485_node node;
+	struct n_rs485_stats st;
+	struct n_rs485_xfer x;
+	struct n_rs485_node node;
 	struct slave s;
 	uint8_t data[255], ev[6];
 	unsigned int i, e0;
@@ -64,8 +64,8 @@ int main(void)
 
 	/* OK, with the largest payload and with none */
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 255, LONG_US, 0);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.attempts == 1 && x.resp.addr == SLAVE_ADDR &&
-	       x.resp.instr == I_ECHO && x.resp.flags == RS485_RESP_ACK && x.resp.len == 255 &&
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 1 && x.resp.addr == SLAVE_ADDR &&
+	       x.resp.instr == I_ECHO && x.resp.flags == N_RS485_RESP_ACK && x.resp.len == 255 &&
 	       !memcmp(x.resp.data, data, 255),
 	       "OK: 255 data bytes echoed byte-exact (status %u, attempts %u)", x.status,
 	       x.attempts);
@@ -75,24 +75,24 @@ int main(void)
 	       "the slave saw the request with a good CRC and the 9th bit on the address only");
 	pthread_mutex_unlock(&s.last_lock);
 	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, NULL, 0, LONG_US, 0);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.resp.len == 0, "OK: no data");
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.resp.len == 0, "OK: no data");
 	tap_ok(s.bad_frames == 0, "no malformed frame on the wire (%u)", s.bad_frames);
 
 	/* TIMEOUT: the request is repeated as it was */
 	e0 = s.executions[I_SILENT];
 	ret = xfer(fd, &x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, 20000, 2);
-	tap_ok(ret == 0 && x.status == RS485_TIMEOUT && x.attempts == 3,
+	tap_ok(ret == 0 && x.status == N_RS485_TIMEOUT && x.attempts == 3,
 	       "TIMEOUT after 1 + 2 retries (status %u, attempts %u)", x.status, x.attempts);
 	tap_ok(s.executions[I_SILENT] - e0 == 3, "a retry after a timeout repeats the request (%u)",
 	       s.executions[I_SILENT] - e0);
 	ret = xfer(fd, &x, 0x42, I_ECHO, 0, NULL, 0, 5000, 0);
-	tap_ok(ret == 0 && x.status == RS485_TIMEOUT && x.attempts == 1,
+	tap_ok(ret == 0 && x.status == N_RS485_TIMEOUT && x.attempts == 1,
 	       "TIMEOUT from an absent node, no retries");
 
 	/* BADCRC then RESEND */
 	e0 = s.resends;
 	ret = xfer(fd, &x, SLAVE_ADDR, I_CORRUPT_ONCE, 0, NULL, 0, LONG_US, 2);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.attempts == 2 && x.resp.len == 1 &&
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 2 && x.resp.len == 1 &&
 	       x.resp.data[0] == 0x5a,
 	       "corrupted response: RESEND gets the good one (status %u, attempts %u)", x.status,
 	       x.attempts);
@@ -101,7 +101,7 @@ int main(void)
 	       s.executions[I_CORRUPT_ONCE], s.resends - e0);
 	e0 = s.resends;
 	ret = xfer(fd, &x, SLAVE_ADDR, I_CORRUPT, 0, NULL, 0, LONG_US, 2);
-	tap_ok(ret == 0 && x.status == RS485_BADCRC && x.attempts == 3,
+	tap_ok(ret == 0 && x.status == N_RS485_BADCRC && x.attempts == 3,
 	       "BADCRC after retries (status %u, attempts %u)", x.status, x.attempts);
 	tap_ok(s.executions[I_CORRUPT] == 1 && s.resends - e0 == 2,
 	       "...every retry was a RESEND (%u executions, %u resends)", s.executions[I_CORRUPT],
@@ -109,32 +109,32 @@ int main(void)
 
 	/* UNKINSTR, DEVERR */
 	ret = xfer(fd, &x, SLAVE_ADDR, I_UNKNOWN, 0, NULL, 0, LONG_US, 2);
-	tap_ok(ret == 0 && x.status == RS485_UNKINSTR && x.attempts == 1, "UNKINSTR, not retried");
+	tap_ok(ret == 0 && x.status == N_RS485_UNKINSTR && x.attempts == 1, "UNKINSTR, not retried");
 	ret = xfer(fd, &x, SLAVE_ADDR, I_DEVERR, 0, NULL, 0, LONG_US, 2);
-	tap_ok(ret == 0 && x.status == RS485_DEVERR && x.resp.len == 2 && x.resp.data[0] == 0xde &&
+	tap_ok(ret == 0 && x.status == N_RS485_DEVERR && x.resp.len == 2 && x.resp.data[0] == 0xde &&
 	       x.resp.data[1] == 0xad, "DEVERR with its data");
 
 	/* broadcast and NOACK: back when the frame is on the wire */
 	e0 = s.broadcasts;
-	ret = xfer(fd, &x, RS485_ADDR_BROADCAST, I_ECHO, 0, data, 3, LONG_US, 2);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.attempts == 1, "broadcast: OK, one attempt");
+	ret = xfer(fd, &x, N_RS485_ADDR_BROADCAST, I_ECHO, 0, data, 3, LONG_US, 2);
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 1, "broadcast: OK, one attempt");
 	e0 = s.executions[I_ECHO];
-	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, RS485_REQ_NOACK, data, 3, LONG_US, 2);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.attempts == 1, "NOACK: OK, one attempt");
+	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, N_RS485_REQ_NOACK, data, 3, LONG_US, 2);
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 1, "NOACK: OK, one attempt");
 	usleep(50000);
 	tap_ok(s.executions[I_ECHO] - e0 == 1 && s.broadcasts >= 1,
 	       "the slave got the broadcast and the NOACK request");
-	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, RS485_REQ_RESEND, NULL, 0, LONG_US, 2);
+	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, N_RS485_REQ_RESEND, NULL, 0, LONG_US, 2);
 	tap_ok(ret == -1 && errno == EINVAL, "RESEND from the caller is refused (EINVAL)");
 
 	/* an event before the response: never the response, reaches read() */
 	ret = xfer(fd, &x, SLAVE_ADDR, I_EVENT_FIRST, 0, data, 9, LONG_US, 0);
-	tap_ok(ret == 0 && x.status == RS485_OK && x.resp.flags == RS485_RESP_ACK &&
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.resp.flags == N_RS485_RESP_ACK &&
 	       x.resp.len == 9 && !memcmp(x.resp.data, data, 9),
 	       "event frame before the response: the transaction gets the response");
 	ev[0] = SLAVE_ADDR;
 	ev[1] = I_EVENT_FIRST;
-	ev[2] = RS485_RESP_EVENT;
+	ev[2] = N_RS485_RESP_EVENT;
 	ev[3] = 2;
 	ev[4] = 9;
 	ev[5] = 0xee;
@@ -142,10 +142,10 @@ int main(void)
 
 	/* response from the wrong node: a timeout, the frame goes to read() */
 	ret = xfer(fd, &x, SLAVE_ADDR, I_WRONG_ADDR, 0, NULL, 0, 30000, 0);
-	tap_ok(ret == 0 && x.status == RS485_TIMEOUT, "response from another node: TIMEOUT");
+	tap_ok(ret == 0 && x.status == N_RS485_TIMEOUT, "response from another node: TIMEOUT");
 	ev[0] = OTHER_ADDR;
 	ev[1] = I_WRONG_ADDR;
-	ev[2] = RS485_RESP_ACK;
+	ev[2] = N_RS485_RESP_ACK;
 	ev[3] = 0;
 	check_frame_read(fd, ev, 4, "unexpected frame");
 
@@ -173,7 +173,7 @@ int main(void)
 	/* write(): a raw request frame */
 	{
 		uint8_t raw[8] = { SLAVE_ADDR, I_ECHO, 0, 2, 0xab, 0xcd };
-		uint8_t want[6] = { SLAVE_ADDR, I_ECHO, RS485_RESP_ACK, 2, 0xab, 0xcd };
+		uint8_t want[6] = { SLAVE_ADDR, I_ECHO, N_RS485_RESP_ACK, 2, 0xab, 0xcd };
 
 		tap_ok(write(fd, raw, 6) == 6, "write() of a raw request frame");
 		check_frame_read(fd, want, 6, "response to a raw write");
@@ -183,52 +183,52 @@ int main(void)
 	/* node error counters */
 	memset(&node, 0, sizeof(node));
 	node.addr = SLAVE_ADDR;
-	ret = ioctl(fd, RS485_IOC_RESET_NODE, &node);
+	ret = ioctl(fd, N_RS485_IOC_RESET_NODE, &node);
 	for (i = 0; i < 16; i++)
 		xfer(fd, &x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, 1000, 0);
 	node.addr = SLAVE_ADDR;
-	ret |= ioctl(fd, RS485_IOC_GET_NODE, &node);
-	tap_ok(ret == 0 && node.errors == 128 && node.state == RS485_NODE_PASSIVE,
+	ret |= ioctl(fd, N_RS485_IOC_GET_NODE, &node);
+	tap_ok(ret == 0 && node.errors == 128 && node.state == N_RS485_NODE_PASSIVE,
 	       "16 failures: counter 128, error-passive (%u, state %u)", node.errors, node.state);
 	for (i = 0; i < 20; i++)
 		xfer(fd, &x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, 1000, 0);
-	ioctl(fd, RS485_IOC_GET_NODE, &node);
-	tap_ok(node.errors == 256 && node.state == RS485_NODE_OFF, "36 failures: off (%u)",
+	ioctl(fd, N_RS485_IOC_GET_NODE, &node);
+	tap_ok(node.errors == 256 && node.state == N_RS485_NODE_OFF, "36 failures: off (%u)",
 	       node.errors);
 	xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, NULL, 0, LONG_US, 0);
-	ioctl(fd, RS485_IOC_GET_NODE, &node);
-	tap_ok(x.status == RS485_OK && node.errors == 0 && node.state == RS485_NODE_ACTIVE,
+	ioctl(fd, N_RS485_IOC_GET_NODE, &node);
+	tap_ok(x.status == N_RS485_OK && node.errors == 0 && node.state == N_RS485_NODE_ACTIVE,
 	       "a good answer brings an off node back (%u)", node.errors);
 	for (i = 0; i < 3; i++)
 		xfer(fd, &x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, 1000, 0);
 	xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, NULL, 0, LONG_US, 0);
-	ioctl(fd, RS485_IOC_GET_NODE, &node);
+	ioctl(fd, N_RS485_IOC_GET_NODE, &node);
 	tap_ok(node.errors == 23, "+8 per failure, -1 per success (%u)", node.errors);
-	ioctl(fd, RS485_IOC_RESET_NODE, &node);
-	ioctl(fd, RS485_IOC_GET_NODE, &node);
-	tap_ok(node.errors == 0, "RS485_IOC_RESET_NODE clears it");
+	ioctl(fd, N_RS485_IOC_RESET_NODE, &node);
+	ioctl(fd, N_RS485_IOC_GET_NODE, &node);
+	tap_ok(node.errors == 0, "N_RS485_IOC_RESET_NODE clears it");
 
 	/* configuration */
 	{
-		struct rs485_config c, c2;
+		struct n_rs485_config c, c2;
 
 		memset(&c, 0, sizeof(c));
-		tap_ok(ioctl(fd, RS485_IOC_GET_CONFIG, &c) == 0 && c.baud == 115200 &&
+		tap_ok(ioctl(fd, N_RS485_IOC_GET_CONFIG, &c) == 0 && c.baud == 115200 &&
 		       c.timeout_us == 10000 && c.retries == 2 && c.gap_chars == 2,
 		       "default config: 115200 Bd, 10 ms, 2 retries, gap 2");
 		c2 = c;
 		c2.baud = 57600;
 		c2.gap_chars = 1;
-		tap_ok(ioctl(fd, RS485_IOC_SET_CONFIG, &c2) == -1 && errno == EINVAL,
+		tap_ok(ioctl(fd, N_RS485_IOC_SET_CONFIG, &c2) == -1 && errno == EINVAL,
 		       "gap below 2 characters: EINVAL");
 		c2.gap_chars = 4;
-		ret = ioctl(fd, RS485_IOC_SET_CONFIG, &c2);
+		ret = ioctl(fd, N_RS485_IOC_SET_CONFIG, &c2);
 		tcgetattr(fd, &during);
 		tap_ok(ret == 0 && cfgetospeed(&during) == B57600, "SET_CONFIG 57600 Bd reaches the port");
 		ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 20, LONG_US, 0);
-		tap_ok(ret == 0 && x.status == RS485_OK && !memcmp(x.resp.data, data, 20),
+		tap_ok(ret == 0 && x.status == N_RS485_OK && !memcmp(x.resp.data, data, 20),
 		       "a transaction at 57600 Bd");
-		ioctl(fd, RS485_IOC_SET_CONFIG, &c);
+		ioctl(fd, N_RS485_IOC_SET_CONFIG, &c);
 	}
 
 	/* statistics add up */

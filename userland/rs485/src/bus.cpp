@@ -19,19 +19,19 @@
 namespace advee::rs485 {
 
 // protocol.hpp mirrors the UAPI without including it; keep both in step.
-static_assert(kBroadcast == RS485_ADDR_BROADCAST);
-static_assert(kMaxData == RS485_MAX_DATA);
-static_assert(kHeaderLength == RS485_HEADER_LEN);
-static_assert(request_flag::kResend == RS485_REQ_RESEND && request_flag::kNoAck == RS485_REQ_NOACK);
-static_assert(response_flag::kAck == RS485_RESP_ACK && response_flag::kUnknownInstruction == RS485_RESP_UNKINSTR &&
-              response_flag::kDeviceError == RS485_RESP_DEVERR && response_flag::kEvent == RS485_RESP_EVENT);
-static_assert(static_cast<int>(Outcome::ok) == RS485_OK && static_cast<int>(Outcome::timeout) == RS485_TIMEOUT &&
-              static_cast<int>(Outcome::bad_crc) == RS485_BADCRC &&
-              static_cast<int>(Outcome::unknown_instruction) == RS485_UNKINSTR &&
-              static_cast<int>(Outcome::device_error) == RS485_DEVERR && static_cast<int>(Outcome::error) == RS485_ERROR);
-static_assert(static_cast<int>(NodeState::active) == RS485_NODE_ACTIVE &&
-              static_cast<int>(NodeState::passive) == RS485_NODE_PASSIVE &&
-              static_cast<int>(NodeState::off) == RS485_NODE_OFF);
+static_assert(kBroadcast == N_RS485_ADDR_BROADCAST);
+static_assert(kMaxData == N_RS485_MAX_DATA);
+static_assert(kHeaderLength == N_RS485_HEADER_LEN);
+static_assert(request_flag::kResend == N_RS485_REQ_RESEND && request_flag::kNoAck == N_RS485_REQ_NOACK);
+static_assert(response_flag::kAck == N_RS485_RESP_ACK && response_flag::kUnknownInstruction == N_RS485_RESP_UNKINSTR &&
+              response_flag::kDeviceError == N_RS485_RESP_DEVERR && response_flag::kEvent == N_RS485_RESP_EVENT);
+static_assert(static_cast<int>(Outcome::ok) == N_RS485_OK && static_cast<int>(Outcome::timeout) == N_RS485_TIMEOUT &&
+              static_cast<int>(Outcome::bad_crc) == N_RS485_BADCRC &&
+              static_cast<int>(Outcome::unknown_instruction) == N_RS485_UNKINSTR &&
+              static_cast<int>(Outcome::device_error) == N_RS485_DEVERR && static_cast<int>(Outcome::error) == N_RS485_ERROR);
+static_assert(static_cast<int>(NodeState::active) == N_RS485_NODE_ACTIVE &&
+              static_cast<int>(NodeState::passive) == N_RS485_NODE_PASSIVE &&
+              static_cast<int>(NodeState::off) == N_RS485_NODE_OFF);
 
 namespace {
 
@@ -61,11 +61,11 @@ int ioctl_retry(int fd, unsigned long request, void* arg) {
   return ret;
 }
 
-// Microseconds for the kernel, or RS485_DEFAULT; nullopt if not representable
+// Microseconds for the kernel, or N_RS485_DEFAULT; nullopt if not representable
 // (the kernel checks the range itself and answers EINVAL).
 std::optional<std::uint32_t> to_timeout_us(const std::optional<std::chrono::microseconds>& t) {
-  if (!t) return RS485_DEFAULT;
-  if (t->count() < 0 || t->count() >= static_cast<std::int64_t>(RS485_DEFAULT)) return std::nullopt;
+  if (!t) return N_RS485_DEFAULT;
+  if (t->count() < 0 || t->count() >= static_cast<std::int64_t>(N_RS485_DEFAULT)) return std::nullopt;
   return static_cast<std::uint32_t>(t->count());
 }
 
@@ -125,29 +125,29 @@ Result Bus::transact(const Request& request) {
   Result result;
   const auto timeout = to_timeout_us(request.options.timeout);
   if (request.data.size() > kMaxData || !timeout ||
-      (request.options.retries && *request.options.retries >= RS485_DEFAULT)) {
+      (request.options.retries && *request.options.retries >= N_RS485_DEFAULT)) {
     result.error = std::make_error_code(std::errc::invalid_argument);
     return result;
   }
-  rs485_xfer x;
+  n_rs485_xfer x;
   std::memset(&x, 0, sizeof(x));
   x.req.addr = request.addr;
   x.req.instr = request.instr;
-  x.req.flags = request.no_ack ? RS485_REQ_NOACK : 0;
+  x.req.flags = request.no_ack ? N_RS485_REQ_NOACK : 0;
   x.req.len = static_cast<std::uint8_t>(request.data.size());
   std::memcpy(x.req.data, request.data.data(), request.data.size());
   x.timeout_us = *timeout;
-  x.retries = request.options.retries.value_or(RS485_DEFAULT);
+  x.retries = request.options.retries.value_or(N_RS485_DEFAULT);
   // Not restarted on EINTR: the request may have executed.
-  if (::ioctl(fd_.get(), RS485_IOC_XFER, &x) < 0) {
+  if (::ioctl(fd_.get(), N_RS485_IOC_XFER, &x) < 0) {
     result.error = ioctl_error();
     return result;
   }
   result.attempts = x.attempts;
   result.flags = x.resp.flags;
   result.data.assign(x.resp.data, x.resp.data + x.resp.len);
-  if (x.status != RS485_OK) {
-    result.error = x.status <= RS485_ERROR ? make_error_code(static_cast<Outcome>(x.status))
+  if (x.status != N_RS485_OK) {
+    result.error = x.status <= N_RS485_ERROR ? make_error_code(static_cast<Outcome>(x.status))
                                            : make_error_code(Outcome::error);
   }
   return result;
@@ -165,7 +165,7 @@ std::error_code Bus::send_raw(const Frame& frame) {
 }
 
 std::optional<Frame> Bus::read_event() {
-  std::array<std::uint8_t, RS485_MAX_FRAME + 1> buf;
+  std::array<std::uint8_t, N_RS485_MAX_FRAME + 1> buf;
   ssize_t n;
   do n = ::read(fd_.get(), buf.data(), buf.size());
   while (n < 0 && errno == EINTR);
@@ -244,14 +244,14 @@ void Bus::event_thread_main() {
 }
 
 BusConfig Bus::config() const {
-  rs485_config c{};
-  if (ioctl_retry(fd_.get(), RS485_IOC_GET_CONFIG, &c) < 0) throw_ioctl(device_ + ": get config");
+  n_rs485_config c{};
+  if (ioctl_retry(fd_.get(), N_RS485_IOC_GET_CONFIG, &c) < 0) throw_ioctl(device_ + ": get config");
   return BusConfig{c.baud, std::chrono::microseconds(c.timeout_us), c.retries, c.gap_chars};
 }
 
 void Bus::set_config(const BusConfig& config) {
-  rs485_config c{};
-  if (ioctl_retry(fd_.get(), RS485_IOC_GET_CONFIG, &c) < 0) throw_ioctl(device_ + ": get config");
+  n_rs485_config c{};
+  if (ioctl_retry(fd_.get(), N_RS485_IOC_GET_CONFIG, &c) < 0) throw_ioctl(device_ + ": get config");
   const auto timeout = to_timeout_us(config.timeout);
   if (!timeout)
     throw std::system_error(std::make_error_code(std::errc::invalid_argument), device_ + ": timeout out of range");
@@ -259,12 +259,12 @@ void Bus::set_config(const BusConfig& config) {
   c.timeout_us = *timeout;
   c.retries = config.retries;
   c.gap_chars = config.gap_chars;
-  if (ioctl_retry(fd_.get(), RS485_IOC_SET_CONFIG, &c) < 0) throw_ioctl(device_ + ": set config");
+  if (ioctl_retry(fd_.get(), N_RS485_IOC_SET_CONFIG, &c) < 0) throw_ioctl(device_ + ": set config");
 }
 
 BusStats Bus::stats() const {
-  rs485_stats s{};
-  if (ioctl_retry(fd_.get(), RS485_IOC_GET_STATS, &s) < 0) throw_ioctl(device_ + ": get statistics");
+  n_rs485_stats s{};
+  if (ioctl_retry(fd_.get(), N_RS485_IOC_GET_STATS, &s) < 0) throw_ioctl(device_ + ": get statistics");
   BusStats b;
   b.tx_frames = s.tx_frames;
   b.tx_bytes = s.tx_bytes;
@@ -287,17 +287,17 @@ BusStats Bus::stats() const {
 }
 
 NodeStatus Bus::node(std::uint8_t addr) const {
-  rs485_node n{};
+  n_rs485_node n{};
   n.addr = addr;
-  if (ioctl_retry(fd_.get(), RS485_IOC_GET_NODE, &n) < 0) throw_ioctl(device_ + ": get node state");
-  const auto state = n.state <= RS485_NODE_OFF ? static_cast<NodeState>(n.state) : NodeState::off;
+  if (ioctl_retry(fd_.get(), N_RS485_IOC_GET_NODE, &n) < 0) throw_ioctl(device_ + ": get node state");
+  const auto state = n.state <= N_RS485_NODE_OFF ? static_cast<NodeState>(n.state) : NodeState::off;
   return NodeStatus{addr, state, n.errors};
 }
 
 void Bus::reset_node(std::uint8_t addr) {
-  rs485_node n{};
+  n_rs485_node n{};
   n.addr = addr;
-  if (ioctl_retry(fd_.get(), RS485_IOC_RESET_NODE, &n) < 0) throw_ioctl(device_ + ": reset node state");
+  if (ioctl_retry(fd_.get(), N_RS485_IOC_RESET_NODE, &n) < 0) throw_ioctl(device_ + ": reset node state");
 }
 
 }  // namespace advee::rs485

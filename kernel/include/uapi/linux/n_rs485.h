@@ -6,7 +6,7 @@
  * Attach with TIOCSETD (N_RS485_DEFAULT_LDISC) or "ldattach 29 /dev/ttyX".
  * Then, on that tty file descriptor:
  *
- *   ioctl(RS485_IOC_XFER)   one request/response transaction (struct rs485_xfer)
+ *   ioctl(N_RS485_IOC_XFER)   one request/response transaction (struct n_rs485_xfer)
  *   read()                  one event frame per call: ADDR INSTR FLAGS LEN DATA
  *                           (4 + LEN bytes, no CRC); EOVERFLOW if the buffer is
  *                           shorter than the frame (the frame is then dropped)
@@ -27,63 +27,63 @@
 /* N_DEVELOPMENT: the line discipline number reserved for out-of-tree use. */
 #define N_RS485_DEFAULT_LDISC	29
 
-#define RS485_ADDR_BROADCAST	0xff
-#define RS485_MAX_DATA		255
+#define N_RS485_ADDR_BROADCAST	0xff
+#define N_RS485_MAX_DATA	255
 /* ADDR INSTR FLAGS LEN */
-#define RS485_HEADER_LEN	4
+#define N_RS485_HEADER_LEN	4
 /* Largest frame read() returns or write() takes (no CRC). */
-#define RS485_MAX_FRAME		(RS485_HEADER_LEN + RS485_MAX_DATA)
+#define N_RS485_MAX_FRAME	(N_RS485_HEADER_LEN + N_RS485_MAX_DATA)
 
 /* Request flags (master to slave) */
-#define RS485_REQ_RESEND	0x01	/* send the last response again, do not execute */
-#define RS485_REQ_NOACK		0x02	/* execute, send no response */
+#define N_RS485_REQ_RESEND	0x01	/* send the last response again, do not execute */
+#define N_RS485_REQ_NOACK	0x02	/* execute, send no response */
 
 /* Response flags (slave to master) */
-#define RS485_RESP_ACK		0x01
-#define RS485_RESP_UNKINSTR	0x02
-#define RS485_RESP_DEVERR	0x04
-#define RS485_RESP_EVENT	0x08
+#define N_RS485_RESP_ACK	0x01
+#define N_RS485_RESP_UNKINSTR	0x02
+#define N_RS485_RESP_DEVERR	0x04
+#define N_RS485_RESP_EVENT	0x08
 
 /* One frame without its CRC (the discipline computes and checks it). */
-struct rs485_frame {
+struct n_rs485_frame {
 	__u8 addr;
 	__u8 instr;
 	__u8 flags;
 	__u8 len;
-	__u8 data[RS485_MAX_DATA];
+	__u8 data[N_RS485_MAX_DATA];
 	__u8 pad;			/* 0 */
 };
 
-/* Outcome of a transaction (rs485_xfer.status) */
-enum rs485_status {
-	RS485_OK = 0,		/* response with ACK (or sent, if none expected) */
-	RS485_TIMEOUT = 1,	/* no valid response after all retries */
-	RS485_BADCRC = 2,	/* last attempt's response had a bad CRC */
-	RS485_UNKINSTR = 3,	/* the device does not know the instruction */
-	RS485_DEVERR = 4,	/* the device failed executing it */
-	RS485_ERROR = 5,	/* local failure (UART stuck), interrupted, bad response */
+/* Outcome of a transaction (n_rs485_xfer.status) */
+enum n_rs485_status {
+	N_RS485_OK = 0,			/* response with ACK (or sent, if none expected) */
+	N_RS485_TIMEOUT = 1,		/* no valid response after all retries */
+	N_RS485_BADCRC = 2,		/* last attempt's response corrupt: bad CRC, cut short */
+	N_RS485_UNKINSTR = 3,		/* the device does not know the instruction */
+	N_RS485_DEVERR = 4,		/* the device failed executing it */
+	N_RS485_ERROR = 5,		/* local failure (UART stuck), interrupted, bad response */
 	/*
-	 * RS485_CFG_ECHO only: the bus did not carry the request as sent (its
+	 * N_RS485_CFG_ECHO only: the bus did not carry the request as sent (its
 	 * echo differed or did not come back) on the last attempt.
 	 */
-	RS485_COLLISION = 6,
+	N_RS485_COLLISION = 6,
 };
 
-/* Use the bus default (rs485_config) for timeout_us or retries. */
-#define RS485_DEFAULT		0xffffffffU
+/* Use the bus default (n_rs485_config) for timeout_us or retries. */
+#define N_RS485_DEFAULT		0xffffffffU
 
-/* RS485_IOC_XFER argument */
-struct rs485_xfer {
-	struct rs485_frame req;		/* in: flags may hold NOACK only */
-	struct rs485_frame resp;	/* out: the response (if any) */
-	__u32 timeout_us;		/* in: response timeout, or RS485_DEFAULT */
-	__u32 retries;			/* in: retries after a failure, or RS485_DEFAULT */
-	__u32 status;			/* out: enum rs485_status */
+/* N_RS485_IOC_XFER argument */
+struct n_rs485_xfer {
+	struct n_rs485_frame req;	/* in: flags may hold NOACK only */
+	struct n_rs485_frame resp;	/* out: the response (if any) */
+	__u32 timeout_us;		/* in: response timeout, or N_RS485_DEFAULT */
+	__u32 retries;			/* in: retries after a failure, or N_RS485_DEFAULT */
+	__u32 status;			/* out: enum n_rs485_status */
 	__u32 attempts;			/* out: requests sent (1 + retries used) */
 };
 
-/* Bus configuration (RS485_IOC_GET_CONFIG / RS485_IOC_SET_CONFIG) */
-struct rs485_config {
+/* Bus configuration (N_RS485_IOC_GET_CONFIG / N_RS485_IOC_SET_CONFIG) */
+struct n_rs485_config {
 	__u32 baud;			/* line rate, e.g. 115200 */
 	__u32 timeout_us;		/* default response timeout, 100..10000000 */
 	__u32 retries;			/* default retries, 0..16 */
@@ -93,18 +93,18 @@ struct rs485_config {
 };
 
 /*
- * rs485_config.flags: the transceiver echoes every character the master
+ * n_rs485_config.flags: the transceiver echoes every character the master
  * sends (a 2-wire half-duplex bus whose receiver stays enabled while it
  * transmits). The discipline then takes the first characters received after
  * each request as its echo and compares them with what it sent; a
  * difference (or a missing echo) is a collision: counted in
- * rs485_stats.collisions and retried, RS485_COLLISION if the last attempt
+ * n_rs485_stats.collisions and retried, N_RS485_COLLISION if the last attempt
  * collided. Without it, such an echo would be taken for the response.
  */
-#define RS485_CFG_ECHO		0x00000001U
+#define N_RS485_CFG_ECHO	0x00000001U
 
-/* Statistics since attach (RS485_IOC_GET_STATS) */
-struct rs485_stats {
+/* Statistics since attach (N_RS485_IOC_GET_STATS) */
+struct n_rs485_stats {
 	__u64 tx_frames;		/* frames sent (each attempt counts) */
 	__u64 tx_bytes;			/* characters sent, CRC included */
 	__u64 rx_frames;		/* valid frames received */
@@ -114,42 +114,42 @@ struct rs485_stats {
 	__u64 rx_noise;			/* characters outside any frame */
 	__u64 rx_overruns;		/* TTY_OVERRUN reports */
 	__u64 rx_framing;		/* TTY_FRAME / TTY_BREAK characters */
-	__u64 xfers;			/* transactions started (RS485_IOC_XFER) */
-	__u64 xfers_ok;			/* ...with outcome RS485_OK */
+	__u64 xfers;			/* transactions started (N_RS485_IOC_XFER) */
+	__u64 xfers_ok;			/* ...with outcome N_RS485_OK */
 	__u64 xfers_failed;		/* ...with any other outcome */
 	__u64 timeouts;			/* attempts without a response */
 	__u64 retries;			/* attempts after the first */
 	__u64 events;			/* frames queued for read() */
 	__u64 events_dropped;		/* frames dropped: event queue full */
 	__u64 unexpected;		/* non-event frames no transaction waited for */
-	/*
-	 * Added later; a program built with the older 136-byte structure
-	 * (without it) still gets the fields above from RS485_IOC_GET_STATS.
-	 */
-	__u64 collisions;		/* RS485_CFG_ECHO: attempts whose echo differed */
+	__u64 collisions;		/* N_RS485_CFG_ECHO: attempts whose echo differed */
 };
 
-/* Per-node error counter (RS485_IOC_GET_NODE / RS485_IOC_RESET_NODE) */
-enum rs485_node_state {
-	RS485_NODE_ACTIVE = 0,		/* counter < 128 */
-	RS485_NODE_PASSIVE = 1,		/* 128 <= counter < 256 */
-	RS485_NODE_OFF = 2,		/* counter >= 256: do not poll it (still served) */
+/* Per-node error counter (N_RS485_IOC_GET_NODE / N_RS485_IOC_RESET_NODE) */
+enum n_rs485_node_state {
+	N_RS485_NODE_ACTIVE = 0,	/* counter < 128 */
+	N_RS485_NODE_PASSIVE = 1,	/* 128 <= counter < 256 */
+	N_RS485_NODE_OFF = 2,		/* counter >= 256: do not poll it (still served) */
 };
 
-struct rs485_node {
+struct n_rs485_node {
 	__u8 addr;			/* in */
-	__u8 state;			/* out: enum rs485_node_state */
+	__u8 state;			/* out: enum n_rs485_node_state */
 	__u16 pad;			/* 0 */
 	__u32 errors;			/* out: the error counter */
 };
 
-#define RS485_IOC_MAGIC		0xb5
-#define RS485_IOC_XFER		_IOWR(RS485_IOC_MAGIC, 1, struct rs485_xfer)
-#define RS485_IOC_GET_CONFIG	_IOR(RS485_IOC_MAGIC, 2, struct rs485_config)
-#define RS485_IOC_SET_CONFIG	_IOW(RS485_IOC_MAGIC, 3, struct rs485_config)
-#define RS485_IOC_GET_STATS	_IOR(RS485_IOC_MAGIC, 4, struct rs485_stats)
-#define RS485_IOC_GET_NODE	_IOWR(RS485_IOC_MAGIC, 5, struct rs485_node)
-/* Reset one node's counter to 0 (active); argument: struct rs485_node (addr). */
-#define RS485_IOC_RESET_NODE	_IOW(RS485_IOC_MAGIC, 6, struct rs485_node)
+/*
+ * 0xBB: a code Documentation/userspace-api/ioctl/ioctl-number.rst does not
+ * list (6.1 up to at least 6.18; it was 0xB5, rpmsg's, until issue 18).
+ */
+#define N_RS485_IOC_MAGIC	0xbb
+#define N_RS485_IOC_XFER	_IOWR(N_RS485_IOC_MAGIC, 1, struct n_rs485_xfer)
+#define N_RS485_IOC_GET_CONFIG	_IOR(N_RS485_IOC_MAGIC, 2, struct n_rs485_config)
+#define N_RS485_IOC_SET_CONFIG	_IOW(N_RS485_IOC_MAGIC, 3, struct n_rs485_config)
+#define N_RS485_IOC_GET_STATS	_IOR(N_RS485_IOC_MAGIC, 4, struct n_rs485_stats)
+#define N_RS485_IOC_GET_NODE	_IOWR(N_RS485_IOC_MAGIC, 5, struct n_rs485_node)
+/* Reset one node's counter to 0 (active); argument: struct n_rs485_node (addr). */
+#define N_RS485_IOC_RESET_NODE	_IOW(N_RS485_IOC_MAGIC, 6, struct n_rs485_node)
 
 #endif /* _UAPI_LINUX_N_RS485_H */

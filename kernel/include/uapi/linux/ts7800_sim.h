@@ -72,7 +72,11 @@ struct ts7800_sim_wire_stats {
 	__u16 fifo_depth;		/* RX and TX FIFO depth of the model */
 };
 
-#define TS7800_SIM_IOC_MAGIC	0xb4
+/*
+ * 0xBC: not listed in Documentation/userspace-api/ioctl/ioctl-number.rst
+ * (6.1 up to at least 6.18; it was 0xB4, gpio's, until issue 18).
+ */
+#define TS7800_SIM_IOC_MAGIC	0xbc
 /* Read the counters and line state of this wire's UART. */
 #define TS7800_SIM_GET_STATS	_IOR(TS7800_SIM_IOC_MAGIC, 1, struct ts7800_sim_wire_stats)
 /* Zero the counters and times (the next character starts a new measurement). */

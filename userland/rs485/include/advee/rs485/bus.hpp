@@ -27,7 +27,7 @@
 
 namespace advee::rs485 {
 
-// Bus configuration (struct rs485_config). Ranges checked by the kernel:
+// Bus configuration (struct n_rs485_config). Ranges checked by the kernel:
 // baud 300..4000000, timeout 100 us..10 s, retries 0..16, gap 2..255 characters.
 struct BusConfig {
   std::uint32_t baud = 115200;
@@ -37,7 +37,7 @@ struct BusConfig {
   friend bool operator==(const BusConfig&, const BusConfig&) = default;
 };
 
-// Statistics since attach (struct rs485_stats, same names).
+// Statistics since attach (struct n_rs485_stats, same names).
 struct BusStats {
   std::uint64_t tx_frames = 0, tx_bytes = 0, rx_frames = 0, rx_bytes = 0;
   std::uint64_t rx_crc_errors = 0, rx_truncated = 0, rx_noise = 0, rx_overruns = 0, rx_framing = 0;

@@ -20,7 +20,7 @@
 
 namespace advee::rs485 {
 
-// Values 0..5 are enum rs485_status of the UAPI (rs485_xfer.status).
+// Values 0..5 are enum n_rs485_status of the UAPI (n_rs485_xfer.status).
 enum class Outcome : int {
   ok = 0,
   timeout = 1,              // TIMEOUT: no valid response after all retries
