@@ -39,7 +39,7 @@ tap_ok "PDO dump shows TxPDO4 disabled by default" \
 	grep -qx "TPDO4 0x483 (disabled) type 255: 6041:00/16 606C:00/32" "$SCR/pdo"
 
 ctl nmt start 3
-tap_ok "NMT start reaches the drive" wait_for "$SCR/epos.log" "node 3 nmt operational" 5
+tap_ok "NMT start reaches the drive" wait_line "$SCR/epos.log" "node 3 nmt operational" 5
 tap_is "status of a fresh drive" "$(ctl status 3)" "statusword 0x0240: switch on disabled, mode 0"
 tap_is "enable walks to operation enabled" "$(ctl enable 3)" "operation enabled"
 tap_is "quick stop" "$(ctl quick-stop 3)" "quick stop active"
@@ -49,6 +49,6 @@ ctl write 3 1017 u16 50
 tap_ok "monitor decodes the drive's heartbeat" \
 	bash -c "'$BIN/canopenctl' -i '$IF' monitor 4 | grep -q 'heartbeat node 3 operational'"
 ctl nmt reset-node all
-tap_ok "reset node: boot-up seen by the drive log" wait_for "$SCR/epos.log" "node 3 nmt pre-operational" 5
+tap_ok "reset node: boot-up seen by the drive log" wait_line "$SCR/epos.log" "node 3 nmt pre-operational" 5
 
 tap_finish

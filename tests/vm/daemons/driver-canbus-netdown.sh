@@ -34,19 +34,17 @@ modules:
     args: [--config, $SCR/canbus.yaml]
 EOC
 
-"$PROBE" listen 90 LL_DATA_DRIVES CM_DATA_ERROR >"$SCR/all.out" &
-BG_PIDS="$BG_PIDS $!"
-sleep 0.5
+listen_bg "$SCR/all.out" LL_DATA_DRIVES CM_DATA_ERROR
 bg "$WATCHDOG" --config "$SCR/watchdog.yaml"
 p1=$(state_pid driver_canbus RUN 20)
-wait_for "$SCR/all.out" "^LL_DATA_DRIVES .* node1=operation_enabled .* node2=operation_enabled" 30 >/dev/null
+wait_line "$SCR/all.out" "^LL_DATA_DRIVES .* node1=operation_enabled .* node2=operation_enabled" 30 >/dev/null
 tap_ok "supervised driver_canbus (pid $p1) runs both drives" test -n "$p1" -a "$?" = 0
 
 ip link set "$IF" down
-wait_for "$SCR/all.out" "^CM_DATA_ERROR .* module=driver_canbus number=35 .* fatal=1 " 10 >/dev/null
+wait_line "$SCR/all.out" "^CM_DATA_ERROR .* module=driver_canbus number=35 .* fatal=1 " 10 >/dev/null
 tap_ok "vcan0 down: fatal error 35 (exit 0x23) reported on CM_DATA_ERROR" test "$?" = 0
 tap_diag "$(grep '^CM_DATA_ERROR .* module=driver_canbus number=35 ' "$SCR/all.out" | head -1)"
-wait_for "$SCR/all.out" "^CM_DATA_ERROR .* module=watchdog .* text=driver_canbus:_ended_after.*device_error_3" 10 >/dev/null
+wait_line "$SCR/all.out" "^CM_DATA_ERROR .* module=watchdog .* text=driver_canbus:_ended_after.*device_error_3" 10 >/dev/null
 tap_ok "the supervisor saw exit 0x23 (device error 3), not a signal" test "$?" = 0
 tap_diag "$(grep '^CM_DATA_ERROR .* module=watchdog .*ended_after' "$SCR/all.out" | head -1)"
 tap_ok "no instance died of a signal (std::terminate would be SIGABRT)" \
@@ -64,10 +62,8 @@ for n in epos icla; do
 done
 p2=$("$LCMCTL" echo --timeout 30 CM_DATA_STATE | first_other driver_canbus "$p1" | head -1)
 tap_ok "restarted by the supervisor ($p2)" test -n "$p2"
-: >"$SCR/after.out"
-"$PROBE" listen 40 LL_DATA_DRIVES >"$SCR/after.out" &
-BG_PIDS="$BG_PIDS $!"
-wait_for "$SCR/after.out" "^LL_DATA_DRIVES .* node1=operation_enabled .* node2=operation_enabled" 40 >/dev/null
+listen_bg "$SCR/after.out" LL_DATA_DRIVES
+wait_line "$SCR/after.out" "^LL_DATA_DRIVES .* node1=operation_enabled .* node2=operation_enabled" 40 >/dev/null
 tap_ok "vcan0 up again: the new instance boots both drives" test "$?" = 0
 grep '^CM_DATA_ERROR .* module=watchdog ' "$SCR/all.out" | sed 's/^/# /' | head -10
 tap_finish

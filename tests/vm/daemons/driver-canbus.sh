@@ -9,6 +9,7 @@
 # PAUSE/RUN, a killed IclA simulator reported and booted again when it comes
 # back, SIGTERM, and exit 0x22 when the drives do not answer.
 . "$(dirname "$0")/lib.sh"
+. "$VMTEST_REPO/tests/lib/candump.sh"
 
 canbus_up "$DRIVER_CANBUS" "$PROBE" "$LCMCTL"
 
@@ -33,32 +34,35 @@ driver_canbus:
   steering: {heartbeat_ms: 250, master_timeout_ms: 2000}
 EOC
 
-candump -L "$IF" >"$SCR/candump.log" 2>&1 &
-SIMS+=($!)
-"$PROBE" listen 8 LL_DATA_DRIVES CM_DATA_ERROR >"$SCR/boot.out" &
-L=$!
-sleep 0.5
+candump_start "$IF" "$SCR/candump.log"
+listen_bg "$SCR/boot.out" LL_DATA_DRIVES CM_DATA_ERROR
+L=$LISTEN_PID
 bg "$DRIVER_CANBUS" --config "$SCR/canbus.yaml" 2>"$SCR/canbus.err"
 D=$LAST_BG
-wait "$L"
+ENABLED='^LL_DATA_DRIVES .* node1=operation_enabled .* node2=operation_enabled '
+wait_line "$SCR/boot.out" "$ENABLED" 30 >/dev/null
+# The rate over 9 messages after both drives are enabled (start-up aside).
+n0=$(grep -n -m1 -E "$ENABLED" "$SCR/boot.out" | cut -d: -f1)
+wait_until 15 eval '[ "$(tail -n +"${n0:-1}" "$SCR/boot.out" | grep -c "^LL_DATA_DRIVES ")" -ge 9 ]'
+wait_lines "$SCR/boot.out" ' number=10 ' 2 10 >/dev/null
+listen_stop "$L"
+tail -n +"${n0:-1}" "$SCR/boot.out" >"$SCR/boot-enabled.out"
 n=$(grep -c '^LL_DATA_DRIVES ' "$SCR/boot.out")
-# The rate over the last 3 s of the window (the first seconds include start-up).
-t_end=$(grep '^LL_DATA_DRIVES ' "$SCR/boot.out" | tail -1 | sed 's/.* t=\([0-9.]*\) .*/\1/')
-n3=$(grep '^LL_DATA_DRIVES ' "$SCR/boot.out" | awk -v e="$t_end" '{ split($2, a, "="); if (a[2] > e - 3.0) n++ } END { print n + 0 }')
 tap_diag "$(grep '^LL_DATA_DRIVES ' "$SCR/boot.out" | tail -1)"
 tap_is "both drives booted and enabled" "$(drives "$SCR/boot.out" node1) $(drives "$SCR/boot.out" node2)" \
 	"operation_enabled operation_enabled"
-tap_ok "LL_DATA_DRIVES at 4 Hz (10..14 in the last 3 s; $n3)" test "$n3" -ge 10 -a "$n3" -le 14
+tap_rate "LL_DATA_DRIVES at 4 Hz" "$SCR/boot-enabled.out" LL_DATA_DRIVES 4
 tap_is "two boot notices (number 10)" "$(errors_numbered "$SCR/boot.out" 10)" 2
 [ "$n" -ge 1 ] || sed 's/^/# canbus.err: /' "$SCR/canbus.err" | tail -20
 
 # 1. Motion at 10 Hz for 3.5 s, steering not homed yet; the listener runs
 # on past the last command to see the timeout.
-"$PROBE" listen 7.5 LL_DATA_DRIVES CM_DATA_ERROR >"$SCR/move.out" &
-L=$!
-sleep 1  # the listener subscribes before the first command
+listen_bg "$SCR/move.out" LL_DATA_DRIVES CM_DATA_ERROR
 "$PROBE" motion 0.5 0.1 10 3.5 >"$SCR/motion1.out"
-wait "$L"
+wait_line "$SCR/move.out" '^LL_DATA_DRIVES .* reason=command_timeout ' 10 >/dev/null
+wait_line "$SCR/move.out" ' number=2 ' 5 >/dev/null
+listen_stop
+candump_sync
 moving=$(grep '^LL_DATA_DRIVES .* stopped=0 ' "$SCR/move.out" | tail -1)
 tap_diag "$moving"
 v=$(field "$moving" speed)
@@ -86,61 +90,49 @@ tap_is "LL_DATA_DRIVES: stopped by the command timeout, speed 0" \
 tap_is "the timeout was reported once (warning number 2)" "$(grep -c 'number=2 severity=1' "$SCR/move.out")" 1
 
 # 3. Homing, then steering follows.
-"$PROBE" listen 6 LL_DATA_DRIVES CM_DATA_ERROR >"$SCR/home.out" &
-L=$!
-sleep 0.3
+listen_bg "$SCR/home.out" LL_DATA_DRIVES CM_DATA_ERROR
 "$PROBE" homing
-wait "$L"
+wait_line "$SCR/home.out" '^LL_DATA_DRIVES .* homed2=1' 15 >/dev/null
+listen_stop
 tap_is "LL_CMD_HOMING: steering homed (homed2=1, at 0 rad)" \
 	"$(drives "$SCR/home.out" homed2) $(drives "$SCR/home.out" steering)" "1 0.0000"
-"$PROBE" listen 3 LL_DATA_DRIVES >"$SCR/steer.out" &
-L=$!
+listen_bg "$SCR/steer.out" LL_DATA_DRIVES
 "$PROBE" motion 0.3 0.2 10 3 >/dev/null
-wait "$L"
+listen_stop
 tap_diag "$(grep '^LL_DATA_DRIVES ' "$SCR/steer.out" | tail -1)"
 tap_ok "0.3 m/s again after the timeout: $(drives "$SCR/steer.out" speed)" close_to "$(drives "$SCR/steer.out" speed)" 0.3 0.01
 tap_ok "steering 0.2 rad: $(drives "$SCR/steer.out" steering)" close_to "$(drives "$SCR/steer.out" steering)" 0.2 0.001
 
-# after FILE LINE REGEX SECONDS: true once a line after line LINE of FILE
-# matches (event-driven: a loaded TCG guest runs 2-3x slower than nominal).
-after() {
-	local i
-	for ((i = 0; i < $4 * 10; i++)); do
-		tail -n +"$(($2 + 1))" "$1" | grep -qE "$3" && return 0
-		sleep 0.1
-	done
-	return 1
-}
 lines() { wc -l <"$1"; }
 MOVING_03='^LL_DATA_DRIVES .* speed=0\.(29|30|31)[0-9]* .*stopped=0 '
 
 # 4. LL_EVENT_STOP while commands keep coming at 10 Hz.
 "$PROBE" motion 0.3 0.2 10 40 >/dev/null &
 M=$!
-"$PROBE" listen 40 LL_DATA_DRIVES CM_DATA_ERROR >"$SCR/stop.out" &
-L=$!
-after "$SCR/stop.out" 0 "$MOVING_03" 20 || tap_diag "not moving before the stop"
+listen_bg "$SCR/stop.out" LL_DATA_DRIVES CM_DATA_ERROR
+L=$LISTEN_PID
+wait_line "$SCR/stop.out" "$MOVING_03" 20 >/dev/null || tap_diag "not moving before the stop"
 "$PROBE" stop on
-after "$SCR/stop.out" 0 'reason=LL_EVENT_STOP' 10
-sleep 2
+wait_line "$SCR/stop.out" 'reason=LL_EVENT_STOP' 10 >/dev/null
+sleep 1	# an observation window (4 periods, 10 commands), not a synchronisation
 held=$(drives "$SCR/stop.out" reason)-$(drives "$SCR/stop.out" speed)
 n=$(lines "$SCR/stop.out")
 "$PROBE" stop off
 tap_is "LL_EVENT_STOP stop=1: held with speed 0 although commands keep coming" "$held" "LL_EVENT_STOP-0.0000"
-if after "$SCR/stop.out" "$n" "$MOVING_03" 15; then r=0; else r=1; fi
+if wait_line "$SCR/stop.out" "$MOVING_03" 15 "$n" >/dev/null; then r=0; else r=1; fi
 tap_is "after stop=0 the next commands move again (0.3 m/s)" "$r" 0
 [ "$r" = 0 ] || { grep '^CM_DATA_ERROR ' "$SCR/stop.out"; tail -3 "$SCR/stop.out"; tail -8 "$SCR/epos.log"; } | sed 's/^/# /'
 
 # 5. PAUSE / RUN of the module, commands still coming.
 n=$(lines "$SCR/stop.out")
 "$LCMCTL" state driver_canbus PAUSE
-after "$SCR/stop.out" "$n" 'reason=module_paused' 10
-sleep 2
+wait_line "$SCR/stop.out" 'reason=module_paused' 10 "$n" >/dev/null
+sleep 1	# an observation window (4 periods, 10 commands), not a synchronisation
 paused=$(drives "$SCR/stop.out" reason)-$(drives "$SCR/stop.out" speed)
 n=$(lines "$SCR/stop.out")
 "$LCMCTL" state driver_canbus RUN
 tap_is "PAUSE: drives stopped, commands ignored" "$paused" "module_paused-0.0000"
-if after "$SCR/stop.out" "$n" "$MOVING_03" 15; then r=0; else r=1; fi
+if wait_line "$SCR/stop.out" "$MOVING_03" 15 "$n" >/dev/null; then r=0; else r=1; fi
 tap_is "RUN: the commands move the drives again (0.3 m/s)" "$r" 0
 [ "$r" = 0 ] || { grep '^CM_DATA_ERROR ' "$SCR/stop.out"; tail -3 "$SCR/stop.out"; } | sed 's/^/# /'
 kill "$M" "$L" 2>/dev/null
@@ -148,20 +140,20 @@ wait "$M" "$L" 2>/dev/null
 
 # 6. The IclA simulator killed, then started again (a fresh process sends
 # its boot-up message like a drive that was power-cycled).
-"$PROBE" listen 5 LL_DATA_DRIVES CM_DATA_ERROR >"$SCR/kill.out" &
-L=$!
-sleep 0.5
+listen_bg "$SCR/kill.out" LL_DATA_DRIVES CM_DATA_ERROR
 kill -9 "$SIM_icla"
 wait "$SIM_icla" 2>/dev/null
-wait "$L"
+wait_line "$SCR/kill.out" ' number=7 ' 10 >/dev/null
+wait_line "$SCR/kill.out" '^LL_DATA_DRIVES .* node2=offline ' 10 >/dev/null
+listen_stop
 tap_diag "$(grep '^CM_DATA_ERROR .* number=7 ' "$SCR/kill.out" | head -1)"
 tap_is "killed IclA: heartbeat lost reported (error number 7), node2 offline" \
 	"$(errors_numbered "$SCR/kill.out" 7) $(drives "$SCR/kill.out" node2)" "1 offline"
-"$PROBE" listen 10 LL_DATA_DRIVES CM_DATA_ERROR >"$SCR/back.out" &
-L=$!
-sleep 0.3
+listen_bg "$SCR/back.out" LL_DATA_DRIVES CM_DATA_ERROR
 sim_drive icla -n 2 -p icla
-wait "$L"
+wait_line "$SCR/back.out" ' number=10 ' 20 >/dev/null
+wait_line "$SCR/back.out" '^LL_DATA_DRIVES .* node2=operation_enabled ' 20 "$(grep -n -m1 ' number=10 ' "$SCR/back.out" | cut -d: -f1)" >/dev/null
+listen_stop
 grep '^CM_DATA_ERROR ' "$SCR/back.out" | sed 's/^/# /'
 tap_is "restarted IclA: reboot reported (9), booted again (10), enabled, not homed" \
 	"$(errors_numbered "$SCR/back.out" 9) $(errors_numbered "$SCR/back.out" 10) $(drives "$SCR/back.out" node2) $(drives "$SCR/back.out" homed2)" \
@@ -175,7 +167,6 @@ tap_is "SIGTERM: exit 0" "$?" 0
 # 8. Drives that do not answer at start-up: device error 2 (0x22).
 kill "$SIM_icla" "$SIM_epos" 2>/dev/null
 wait "$SIM_icla" "$SIM_epos" 2>/dev/null
-sleep 0.5
 bg "$DRIVER_CANBUS" --config "$SCR/canbus.yaml" 2>"$SCR/noboot.err"
 wait_exit "$LAST_BG" 20
 rc=$?

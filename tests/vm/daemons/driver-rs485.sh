@@ -44,14 +44,13 @@ bg "$DRIVER_RS485" --config "$SCR/a.yaml" 2>"$SCR/a.err"
 A=$LAST_BG
 bg "$DRIVER_RS485" --config "$SCR/b.yaml" 2>"$SCR/b.err"
 B=$LAST_BG
-sleep 2
+wait_state driver_rs485a 3 30 "$A" >/dev/null || sed 's/^/# a.err: /' "$SCR/a.err" | tail -20
+wait_state driver_rs485b 3 30 "$B" >/dev/null || sed 's/^/# b.err: /' "$SCR/b.err" | tail -20
 
 # --- bus A: ranges, rates, odometry ---
-listen 3 LL_DATA_SRFS LL_DATA_ODO
-ns=$(count LL_DATA_SRFS) no=$(count LL_DATA_ODO)
-tap_diag "in 3 s: LL_DATA_SRFS $ns, LL_DATA_ODO $no (4 Hz configured)"
-tap_ok "LL_DATA_SRFS at 4 Hz (9..15 in 3 s)" test "$ns" -ge 9 -a "$ns" -le 15
-tap_ok "LL_DATA_ODO at 4 Hz (9..15 in 3 s)" test "$no" -ge 9 -a "$no" -le 15
+listen_for 9 15 LL_DATA_SRFS LL_DATA_ODO
+tap_rate "LL_DATA_SRFS at 4 Hz" "$SCR/listen.out" LL_DATA_SRFS 4
+tap_rate "LL_DATA_ODO at 4 Hz" "$SCR/listen.out" LL_DATA_ODO 4
 s=$(last LL_DATA_SRFS)
 tap_diag "$s"
 tap_is "sender and counts: 16 SRFs, 4 IRs" "$(field "$s" module) $(field "$s" srfs) $(field "$s" irs)" "driver_rs485a 16 4"
@@ -72,11 +71,17 @@ tap_ok "straight: yaw rate 0 (+-0.02 rad/s)" close_to "$w" 0 0.02
 read -r TL TR < <(awk -v v=0.5 -v w=0.4 -v r=$R -v n=$TPR -v t=$TRACK -v l=$BASE 'BEGIN {
 	m = 2 * 3.14159265358979 * r / n
 	printf "%.3f %.3f\n", sqrt((w * l)^2 + (v - w * t / 2)^2) / m, sqrt((w * l)^2 + (v + w * t / 2)^2) / m }')
+listen_bg "$SCR/turn.out" LL_DATA_ODO
 sim set so1@0x20 rate "$TL" "$TR" >/dev/null
-sleep 1
-listen 3 LL_DATA_ODO
+# The first interval turning may still hold straight ticks: the mean is
+# taken over the 8 intervals after it.
+wait_line "$SCR/turn.out" '^LL_DATA_ODO .* yaw=0\.[1-9]' 10 >/dev/null
+first=$(grep -n -m1 -E '^LL_DATA_ODO .* yaw=0\.[1-9]' "$SCR/turn.out" | cut -d: -f1)
+wait_lines "$SCR/turn.out" '^LL_DATA_ODO ' $((${first:-0} + 8)) 10 >/dev/null
+listen_stop
+tail -n +$((${first:-0} + 1)) "$SCR/turn.out" >"$SCR/listen.out"
 v=$(mean_field LL_DATA_ODO speed) w=$(mean_field LL_DATA_ODO yaw)
-tap_diag "turn: tick rates $TL $TR per s -> mean speed $v m/s, yaw rate $w rad/s (want 0.5, 0.4)"
+tap_diag "turn: tick rates $TL $TR per s -> mean speed $v m/s, yaw rate $w rad/s over $(count LL_DATA_ODO) intervals (want 0.5, 0.4)"
 tap_ok "left turn: speed 0.5 m/s (+-4 %)" close_to "$v" 0.5 0.02
 tap_ok "left turn: yaw rate 0.4 rad/s (+-5 %)" close_to "$w" 0.4 0.02
 
@@ -85,52 +90,60 @@ sim set sbs1@0x30 beacon 3 90 200 >/dev/null
 sim set sbs1@0x30 beacon 5 270.5 100 >/dev/null
 sim set sbs1@0x30 beacon 7 45 50 >/dev/null
 "$PROBE" active-beacons 3 5
-sleep 2.2
-tap_is "LL_DATA_ACTIVE_BEACONS reached the scanner (SET_BEACON_IDS 3 5)" "$(sim show sbs1@0x30 | grep -o 'ids [0-9 ]*' | sed 's/ *$//')" "ids 3 5"
-listen 4.2 LL_DATA_BEACONS
-nb=$(count LL_DATA_BEACONS)
+scanner_ids() { sim show sbs1@0x30 | grep -o 'ids [0-9 ]*' | sed 's/ *$//'; }
+wait_until 10 eval '[ "$(scanner_ids)" = "ids 3 5" ]'
+tap_is "LL_DATA_ACTIVE_BEACONS reached the scanner (SET_BEACON_IDS 3 5)" "$(scanner_ids)" "ids 3 5"
+listen_for 4 15 LL_DATA_BEACONS
 b=$(last LL_DATA_BEACONS)
-tap_diag "in 4.2 s: LL_DATA_BEACONS $nb (1 Hz); $b"
-tap_ok "LL_DATA_BEACONS at 1 Hz (3..6 in 4.2 s)" test "$nb" -ge 3 -a "$nb" -le 6
+tap_diag "$b"
+tap_rate "LL_DATA_BEACONS at 1 Hz" "$SCR/listen.out" LL_DATA_BEACONS 1
 tap_is "the two active beacons, not the inactive 7" "$(field "$b" module) $(field "$b" count) $(field "$b" b7)" "driver_rs485b 2 "
 bearings_ok() { close_to "$(field "$b" b3)" 1.5708 0.0002 && close_to "$(field "$b" b5)" 4.7211 0.0002; }
 tap_ok "bearings: beacon 3 at 90 deg = 1.5708 rad, beacon 5 at 270.5 deg = 4.7211 rad" bearings_ok
 
 # --- PAUSE / RUN ---
 "$LCMCTL" state driver_rs485a PAUSE
-sleep 0.6
-listen 2 LL_DATA_SRFS LL_DATA_ODO
+wait_state driver_rs485a 6 10 "$A" >/dev/null
+uptime_cs
+t_pause=$UPTIME_CS
+listen_bg "$SCR/listen.out" LL_DATA_SRFS LL_DATA_ODO
+sleep 2	# an observation window (8 periods at 4 Hz), not a synchronisation
+listen_stop
 tap_is "PAUSE: no LL_DATA_SRFS or LL_DATA_ODO for 2 s" "$(count LL_DATA_SRFS) $(count LL_DATA_ODO)" "0 0"
+listen_bg "$SCR/listen.out" LL_DATA_SRFS LL_DATA_ODO
 "$LCMCTL" state driver_rs485a RUN
-sleep 0.3
-listen 2 LL_DATA_SRFS LL_DATA_ODO
-n=$(count LL_DATA_SRFS)
-tap_diag "after RUN: $n LL_DATA_SRFS in 2 s; $(grep -m1 '^LL_DATA_ODO ' "$SCR/listen.out")"
-tap_ok "RUN: polling again (>= 6 LL_DATA_SRFS in 2 s)" test "$n" -ge 6
-# The pause lasted 2.6 s; an interval spanning it would be that long (under
-# TCG single polls are late by a few hundred ms, so the bound is 1.5 s).
-tap_ok "RUN: no odometry interval spans the pause (all < 1.5 s)" \
+wait_lines "$SCR/listen.out" '^LL_DATA_ODO ' 4 10 >/dev/null
+listen_stop
+uptime_cs
+paused_ms=$(((UPTIME_CS - t_pause) * 10))
+tap_diag "after RUN: $(count LL_DATA_SRFS) LL_DATA_SRFS; $(grep -m1 '^LL_DATA_ODO ' "$SCR/listen.out")"
+tap_ok "RUN: polling again (LL_DATA_SRFS and LL_DATA_ODO)" test "$(count LL_DATA_SRFS)" -ge 1 -a "$(count LL_DATA_ODO)" -ge 4
+# The pause lasted over 2 s; an interval spanning it would be that long
+# (under TCG single polls are late by a few hundred ms, so the bound is 1.5 s).
+tap_ok "RUN: no odometry interval spans the pause of $paused_ms ms (all < 1.5 s)" \
 	awk '/^LL_DATA_ODO / { for (i = 1; i <= NF; i++) if ($i ~ /^interval=/) { sub("interval=", "", $i); if ($i + 0 >= 1.5) bad = 1; n++ } } END { exit bad || !n }' "$SCR/listen.out"
 
 # --- a silent board: error-passive, off (not polled), reset-node ---
-"$LCMCTL" echo --timeout 40 CM_DATA_ERROR >"$SCR/errors.out" &
-ECHO=$!
-BG_PIDS="$BG_PIDS $ECHO"
-sleep 0.5
+bg "$LCMCTL" echo --timeout 60 CM_DATA_ERROR >"$SCR/errors.out"
+ECHO=$LAST_BG
+wait_lcm_listening "$ECHO" 20
 sim fault sd1@0x11 no-answer 1 >/dev/null
-wait_for "$SCR/errors.out" 'rear \(0x11\) is off' 30
+wait_line "$SCR/errors.out" 'rear \(0x11\) is off' 30
 tap_ok "the silent rear board is reported: timeout, error-passive, off" \
 	sh -c "grep -q 'number=1 .*rear (0x11): GET_BOTH failed: ' '$SCR/errors.out' && grep -q 'number=2 .*rear (0x11) is error-passive' '$SCR/errors.out' && grep -q 'number=3 .*rear (0x11) is off .*reset-node 0x11' '$SCR/errors.out'"
 tap_diag "$(grep -c . "$SCR/errors.out") error reports; $(grep 'is off' "$SCR/errors.out")"
+# Counted over polls of bus A, not over a time: each would have asked 0x11.
 r1=$(sim stats sd1@0x11 | sed -n 's/.*requests=\([0-9]*\).*/\1/p')
-listen 2 LL_DATA_SRFS
+listen_for 6 10 LL_DATA_SRFS
 r2=$(sim stats sd1@0x11 | sed -n 's/.*requests=\([0-9]*\).*/\1/p')
-tap_is "an off node is not polled (requests to 0x11 in 2 s)" "$((r2 - r1))" 0
+tap_is "an off node is not polled (requests to 0x11 during $(count LL_DATA_SRFS) polls of bus A)" "$((r2 - r1))" 0
 tap_is "the front board is still published alone" "$(field "$(last LL_DATA_SRFS)" srfs)" 8
+listen_bg "$SCR/listen.out" LL_DATA_SRFS
 sim fault sd1@0x11 clear >/dev/null
 "$RS485CTL" -b /dev/ttyTSU0 reset-node 0x11 >/dev/null
-wait_for "$SCR/errors.out" 'rear \(0x11\) was reset' 5
-listen 1.5 LL_DATA_SRFS
+wait_line "$SCR/errors.out" 'rear \(0x11\) was reset' 10 >/dev/null
+wait_line "$SCR/listen.out" '^LL_DATA_SRFS .* srfs=16 ' 10 >/dev/null
+listen_stop
 tap_is "after reset-node: polled and published again (srf9 2.50 m)" "$(field "$(last LL_DATA_SRFS)" srf9)" 2.500
 kill "$ECHO" 2>/dev/null
 

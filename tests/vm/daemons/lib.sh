@@ -9,14 +9,13 @@ DAEMONS=$VMTEST_BUILD/userland/daemons
 DRIVER_RS485=$DAEMONS/driver_rs485/driver_rs485
 DRIVER_POWER=$DAEMONS/driver_power/driver_power
 DRIVER_CANBUS=$DAEMONS/driver_canbus/driver_canbus
-PROBE=$DAEMONS/driver_rs485/advee-daemons-probe
 RS485CTL=$LIBBIN/rs485ctl
 DSUITE=$VMTEST_REPO/tests/vm/daemons
 
 daemons_cleanup() {
 	bg_kill_all
 	rs485_cleanup
-	net_teardown
+	lcm_net_down
 }
 
 # daemons_rs485_up PROGRAM...: LCM route, simulated FPGA, rs485-sim with
@@ -24,7 +23,7 @@ daemons_cleanup() {
 daemons_rs485_up() {
 	rs485_setup "$SIMBIN/rs485-sim" "$PROBE" "$LCMCTL" "$@"
 	trap daemons_cleanup EXIT
-	net_setup || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
+	lcm_net_up || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
 	if ! start_sim "$DSUITE/boards.yaml"; then
 		echo "Bail out! rs485-sim did not start"
 		sed 's/^/# /' "$SCR/sim.err"
@@ -32,8 +31,18 @@ daemons_rs485_up() {
 	fi
 }
 
-# listen SECONDS CHANNEL...: decoded messages into $SCR/listen.out.
-listen() { "$PROBE" listen "$@" >"$SCR/listen.out"; }
+# listen_for COUNT SECONDS CHANNEL...: decoded messages into $SCR/listen.out
+# until COUNT of the first CHANNEL have come (at most SECONDS).
+listen_for() {
+	local n=$1 secs=$2 rc outer=$LISTEN_PID
+	shift 2
+	listen_bg "$SCR/listen.out" "$@" || return 1
+	wait_lines "$SCR/listen.out" "^$1 " "$n" "$secs"
+	rc=$?
+	listen_stop
+	LISTEN_PID=$outer
+	return $rc
+}
 count() { grep -c "^$1 " "$SCR/listen.out"; }
 last() { grep "^$1 " "$SCR/listen.out" | tail -1; }
 
@@ -43,8 +52,6 @@ mean_field() {
 		awk '{ s += $1; n++ } END { if (n) printf "%.4f\n", s / n }'
 }
 
-
-
 # The CAN side of the driver_canbus tests: vcan0 and canopen-sim-drive.
 CANBIN=$VMTEST_BUILD/userland/canopen
 IF=vcan0
@@ -53,11 +60,11 @@ SIMS=()
 canbus_cleanup() {
 	bg_kill_all
 	local p
-	for p in "${SIMS[@]}"; do kill "$p" 2>/dev/null; done
+	for p in "${SIMS[@]}" $CANDUMP_PID; do kill "$p" 2>/dev/null; done
 	for p in "${SIMS[@]}"; do wait "$p" 2>/dev/null; done
 	ip link del "$IF" 2>/dev/null
 	modprobe -r vcan can_raw can 2>/dev/null
-	net_teardown
+	lcm_net_down
 	rm -rf "$SCR"
 }
 
@@ -69,7 +76,7 @@ canbus_up() {
 		[ -x "$b" ] || { echo "Bail out! $b not built"; exit 1; }
 	done
 	trap canbus_cleanup EXIT
-	net_setup || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
+	lcm_net_up || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
 	modprobe vcan || { echo "Bail out! modprobe vcan"; exit 1; }
 	ip link add dev "$IF" type vcan 2>/dev/null
 	ip link set "$IF" txqueuelen 1000
@@ -83,5 +90,5 @@ sim_drive() {
 	"$CANBIN/canopen-sim-drive" -i "$IF" "$@" >>"$SCR/$name.log" 2>&1 &
 	SIMS+=($!)
 	eval "SIM_$name=$!"
-	wait_for "$SCR/$name.log" "ready on" 20 >/dev/null
+	wait_line "$SCR/$name.log" "ready on" 20 >/dev/null
 }

@@ -20,17 +20,22 @@ mkdir -p "$R/var/lib/dpkg/info" "$R/var/lib/dpkg/updates"
 : >"$R/var/lib/dpkg/status"
 tap_ok "dpkg -i advee into an empty root" \
 	dpkg --root="$R" --force-script-chrootless --force-depends -i "$deb"
+# Compared lists must not be empty: two empty lists would be equal.
+staged=$(cd "$OUT/stage-amd64" && find usr etc -type f | sort)
+[ -n "$staged" ] || staged="(no staged file)"
 tap_is "installed files = the staging install (minus modules)" \
 	"$(cd "$R" && find usr etc -type f | grep -v '^etc/\(passwd\|group\|shadow\|gshadow\|\.pwd\.lock\)$' | sort)" \
-	"$(cd "$OUT/stage-amd64" && find usr etc -type f | sort)"
+	"$staged"
+conffiles=$(dpkg-deb -I "$deb" conffiles | sort)
+[ -n "$conffiles" ] || conffiles="(no conffile)"
 tap_is "every /etc file is a conffile" \
-	"$(dpkg-deb -I "$deb" conffiles | sort)" "$(cd "$OUT/stage-amd64" && find etc -type f | sed 's|^|/|' | sort)"
-tap_ok "postinst created user and group advee in that root (DPKG_ROOT)" \
-	grep -q '^advee:' "$R/etc/group" "$R/etc/passwd"
+	"$conffiles" "$(cd "$OUT/stage-amd64" && find etc -type f | sed 's|^|/|' | sort)"
+both_advee() { grep -q '^advee:' "$R/etc/group" && grep -q '^advee:' "$R/etc/passwd"; }
+tap_ok "postinst created user and group advee in that root (DPKG_ROOT)" both_advee
 tap_ok "dpkg -r removes it" dpkg --root="$R" --force-script-chrootless -r advee
 tap_is "only the conffiles stay after removal (dpkg -r, not --purge)" \
 	"$(cd "$R" && find usr etc -type f 2>/dev/null | grep -v '^etc/\(passwd\|group\|shadow\|gshadow\|\.pwd\.lock\)$' | sort)" \
-	"$(dpkg-deb -I "$deb" conffiles | sed 's|^/||' | sort)"
+	"$(printf '%s\n' "$conffiles" | sed 's|^/||')"
 
 src=$(dpkg-deb -c "$dkms_deb" | awk '{ print $6 }')
 tap_is "advee-dkms: dkms.conf, no test-only source" \

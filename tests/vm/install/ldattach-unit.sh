@@ -22,7 +22,7 @@ unit=$DEST/usr/lib/systemd/system/advee-rs485-ldattach@.service
 cmd=$(sed -n 's/^ExecStart=//p' "$unit" | sed 's/%I/ttyTSU0/g; s/%i/ttyTSU0/g')
 tap_diag "ExecStart for ttyTSU0: $cmd"
 if ! modprobe ts_uart || ! modprobe ts7800_sim; then tap_diag "cannot load ts_uart + ts7800_sim"; exit 1; fi
-for _i in $(seq 50); do [ -c /dev/ttyTSU0 ] && break; sleep 0.1; done
+wait_path /dev/ttyTSU0 5
 
 # The discipline's module is autoloaded by TIOCSETD and referenced while attached.
 refcnt() { cat /sys/module/n_rs485/refcnt 2>/dev/null || echo none; }
@@ -31,14 +31,15 @@ refcnt() { cat /sys/module/n_rs485/refcnt 2>/dev/null || echo none; }
 tap_diag "unit: $(grep '^CapabilityBoundingSet=' "$unit")"
 setpriv --bounding-set=-all $cmd >"$VMTEST_SCRATCH/ldattach.log" 2>&1 &
 pid=$!
-for _i in $(seq 100); do [ "$(refcnt)" != none ] && [ "$(refcnt)" -gt 0 ] && break; sleep 0.1; done
+attached() { [ "$(refcnt)" != none ] && [ "$(refcnt)" -gt 0 ]; }
+wait_until 10 attached
 tap_ok "n_rs485 attached (module referenced: refcnt $(refcnt))" test "$(refcnt)" != none -a "$(refcnt)" -gt 0
-sleep 1
+sleep 1	# an observation window: a daemonising ldattach would have exited by now
 tap_ok "ldattach still runs in the foreground (Type=simple)" kill -0 "$pid"
 kill -TERM "$pid"
 wait "$pid" 2>/dev/null
 pid=
-for _i in $(seq 50); do [ "$(refcnt)" = 0 ] && break; sleep 0.1; done
+wait_until 5 eval '[ "$(refcnt)" = 0 ]'
 tap_is "stopping it detaches the discipline (refcnt 0)" "$(refcnt)" 0
 tap_ok "n_rs485 unloads afterwards" modprobe -r n_rs485
 tap_finish

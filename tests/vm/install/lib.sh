@@ -6,6 +6,7 @@
 # live without touching the host's root (read-only 9p in the guest).
 
 . "$VMTEST_REPO/tests/lib/tap.sh"
+. "$VMTEST_REPO/tests/lib/wait.sh"
 
 DEST=$VMTEST_SCRATCH/root
 OVL=/tmp/install-ovl.$$

@@ -30,13 +30,13 @@ if ! modprobe ts7800_dio || ! modprobe ts7800_sim || ! modprobe ts7800_dio_i2c; 
 	tap_diag "cannot load ts7800_dio + ts7800_sim + ts7800_dio_i2c"; exit 1
 fi
 bus=
-for _i in $(seq 100); do
+dio_bus() {
 	for a in /sys/bus/i2c/devices/i2c-*; do
 		grep -q '^TS-7800 DIO I2C' "$a/name" 2>/dev/null && bus=${a##*/i2c-}
 	done
-	[ -n "$bus" ] && break
-	sleep 0.1
-done
+	[ -n "$bus" ]
+}
+wait_until 10 dio_bus
 [ -n "$bus" ] || { tap_diag "no TS-7800 DIO I2C adapter"; exit 1; }
 grep -q '^max6615 ' /proc/modules && { tap_diag "max6615 already loaded: the test would prove nothing"; exit 1; }
 
@@ -48,7 +48,7 @@ tap_is "the rule declared the chip: client $bus-0018 named max6615" "$(cat "$cli
 # udevd would load the driver from the client's modalias; here: modprobe by it.
 modalias=$(cat "$client/modalias" 2>/dev/null)
 tap_ok "the client's modalias ($modalias) loads max6615" modprobe "$modalias"
-for _i in $(seq 50); do [ -e "$client/driver" ] && break; sleep 0.1; done
+wait_path "$client/driver" 5
 tap_is "max6615 bound to the declared client" "$(basename "$(readlink "$client/driver" 2>/dev/null)")" max6615
 
 if ! grep -q '^i2c_dev ' /proc/modules; then modprobe i2c-dev && I2C_DEV_LOADED_BY_US=1; fi

@@ -1,57 +1,26 @@
 # SPDX-License-Identifier: GPL-2.0
 # Helpers of the modules VM suite (sourced): LCM over UDP multicast on the
-# guest's loopback, the userland binaries, and the simulated BR-FAN1 of the
-# dio-i2c suite (sim_load, adapter_load, chip_set, cleanup_all).
+# guest's loopback (tests/lib/lcm.sh), the userland binaries, background
+# processes and listeners, and the simulated BR-FAN1 of the dio-i2c suite
+# (sim_load, adapter_load, chip_set, cleanup_all).
 
 . "$VMTEST_REPO/tests/vm/dio-i2c/lib.sh"
+. "$VMTEST_REPO/tests/lib/lcm.sh"
 
 UL=$VMTEST_BUILD/userland
 WATCHDOG=$UL/watchdog/advee-watchdog
 DRIVER_AUX=$UL/daemons/driver_aux/driver_aux
 TEST_MODULE=$UL/module/advee-test-module
 LCMCTL=$UL/module/advee-lcmctl
-export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
-ROUTE_ADDED_BY_US=0
+PROBE=$UL/daemons/driver_rs485/advee-daemons-probe
 BG_PIDS=
-
-# net_setup: loopback up with a multicast route (the guest has no other
-# interface), so LCM's UDP multicast reaches every process in the guest.
-net_setup() {
-	ip link set lo up || return 1
-	if ! ip route show table all | grep -q '^multicast\|224.0.0.0/4'; then
-		ip route add 224.0.0.0/4 dev lo || return 1
-		ROUTE_ADDED_BY_US=1
-	fi
-}
-
-net_teardown() {
-	[ "$ROUTE_ADDED_BY_US" = 1 ] && ip route del 224.0.0.0/4 dev lo 2>/dev/null
-	ROUTE_ADDED_BY_US=0
-	return 0
-}
+LISTEN_PID=
 
 # bg CMD...: start CMD in the background, remembered for bg_kill_all.
 bg() {
 	"$@" &
 	BG_PIDS="$BG_PIDS $!"
 	LAST_BG=$!
-}
-
-# close_to VALUE WANT TOLERANCE: |VALUE - WANT| <= TOLERANCE (numbers).
-close_to() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
-
-# wait_exit PID SECONDS: the exit status of a background process, 255 if it
-# did not end in time.
-wait_exit() {
-	local i
-	for ((i = 0; i < $2 * 10; i++)); do
-		if ! kill -0 "$1" 2>/dev/null; then
-			wait "$1"
-			return $?
-		fi
-		sleep 0.1
-	done
-	return 255
 }
 
 bg_kill_all() {
@@ -65,15 +34,42 @@ bg_kill_all() {
 	return 0
 }
 
+# listen_bg FILE CHANNEL...: advee-daemons-probe listening (for at most 5
+# minutes) in the background, one decoded line per message into FILE;
+# returns once it has subscribed, with its pid in LISTEN_PID.
+listen_bg() {
+	local out=$1
+	shift
+	bg "$PROBE" listen 300 "$@" >"$out"
+	LISTEN_PID=$LAST_BG
+	wait_lcm_listening "$LISTEN_PID" 20 || { echo "# advee-daemons-probe listen did not subscribe within 20 s"; return 1; }
+}
+# listen_stop [PID]: end a listener (default: the last one started).
+listen_stop() {
+	kill "${1:-$LISTEN_PID}" 2>/dev/null
+	wait "${1:-$LISTEN_PID}" 2>/dev/null
+	return 0
+}
+
+# wait_state MODULE STATE SECONDS [PID]: MODULE (the instance PID) announced
+# STATE on CM_DATA_STATE (3 RUN: it has subscribed to its channels and runs
+# its loop; 6 PAUSE). Announcements come every second and on each change.
+wait_state() {
+	local out=$VMTEST_SCRATCH/wait_state.out rc outer=$LISTEN_PID
+	listen_bg "$out" CM_DATA_STATE || return 1
+	wait_line "$out" "^CM_DATA_STATE .* module=$1 state=$2 pid=${4:-[0-9]+}\$" "$3"
+	rc=$?
+	listen_stop
+	LISTEN_PID=$outer
+	return $rc
+}
+
 # echo_msgs COUNT TIMEOUT CHANNEL...: decoded messages, one per line.
 echo_msgs() {
 	_n=$1 _t=$2
 	shift 2
 	"$LCMCTL" echo --count "$_n" --timeout "$_t" "$@"
 }
-
-# field LINE KEY: the value of key=value in an echo line.
-field() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p" | head -1; }
 
 # first_other MODULE OLDPID: from echo lines on stdin, the first CM_DATA_STATE
 # of MODULE sent by a pid other than OLDPID. A shell loop, not awk: mawk
@@ -119,17 +115,16 @@ board_up() {
 	chip_set fan1_rpm 1500
 	chip_set fan2_rpm 900
 	modprobe max6615 || return 1
-	for _i in $(seq 50); do
-		HWMON=$(grep -l '^max6615$' /sys/class/hwmon/hwmon*/name 2>/dev/null | head -1)
-		[ -n "$HWMON" ] && HWMON=${HWMON%/name} && return 0
-		sleep 0.1
-	done
-	return 1
+	wait_until 5 hwmon_found
+}
+hwmon_found() {
+	HWMON=$(grep -l '^max6615$' /sys/class/hwmon/hwmon*/name 2>/dev/null | head -1)
+	[ -n "$HWMON" ] && HWMON=${HWMON%/name}
 }
 
 modules_cleanup() {
 	bg_kill_all
-	net_teardown
+	lcm_net_down
 	cleanup_all
 }
 

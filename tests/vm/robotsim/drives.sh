@@ -42,7 +42,7 @@ ctl write 2 6081 u32 3000
 ctl write 2 6040 u16 0x0f
 ctl write 2 607a i32 1745
 ctl write 2 6040 u16 0x1f
-sleep 1  # 1745 units at 3000 units/s
+wait_position 2 1745 15  # 1745 units at 3000 units/s
 wait_status 2 0x0400 15 >/dev/null  # target reached
 p=$(pose)
 tap_diag "turned: $p"
@@ -50,7 +50,7 @@ tap_ok "steering follows the IclA: 10.0 degrees" close_to "$(field "$p" steering
 ctl write 2 6040 u16 0x0f
 ctl write 2 607a i32 0
 ctl write 2 6040 u16 0x1f
-sleep 1
+wait_position 2 0 15
 wait_status 2 0x0400 15 >/dev/null
 p=$(pose)
 tap_ok "and back to straight ahead" close_to "$(field "$p" steering_deg)" 0 0.02
@@ -62,7 +62,7 @@ bg "$RS485CTL" -b /dev/ttyTSU2 watch -a 0x01 -t 60s >"$SCR/watch.out" 2>"$SCR/wa
 # EPOS (node 1): profile velocity, 993 rpm = 0.5 m/s.
 epos_velocity 993
 p1=$(pose)
-sleep 2
+sleep 2	# the interval the speed is measured over (pose time stamps), not a synchronisation
 p2=$(pose)
 tap_diag "moving: $p1"
 tap_diag "moving: $p2"
@@ -75,20 +75,20 @@ tap_ok "straight: heading and y unchanged" \
 	cond "close_to '$(field "$p2" heading_deg)' '$h0' 0.01 && close_to '$(field "$p2" y)' 2 0.001"
 
 # Into the wall: 6.1 m in ~12 s; PAUSE engaged by the front bumper.
-wait_for "$SCR/watch.out" "instr 0x40 .* 01 01" 40
+wait_line "$SCR/watch.out" "instr 0x40 .* 01 01" 40
 tap_ok "PSC1 PAUSE event (engaged, front bumper) on the power link" grep -qE "instr 0x40 .* 01 01" "$SCR/watch.out"
-sleep 1
-p=$(pose)
+wait_until 10 at_wall
+r=$?
+p=$P
 tap_diag "at the wall: $p"
-tap_ok "stopped at the wall: 9.0 < x <= 9.1 (front bumper at 10.0), speed 0, PAUSE engaged" \
-	cond "awk -v x='$(field "$p" x)' 'BEGIN { exit !(x > 9.0 && x <= 9.1) }' && test '$(field "$p" speed) $(field "$p" engaged)' = '0.0000 1'"
-sleep 1
+tap_result $r "stopped at the wall: 9.0 < x <= 9.1 (front bumper at 10.0), speed 0, PAUSE engaged"
+sleep 1	# an observation window (10 poses), not a synchronisation
 p3=$(pose)
 tap_is "still at the wall a second later (the drive still pushes)" "$(field "$p3" x) $(field "$p3" pause)" "$(field "$p" x) 1"
 
 # driver_canbus answers LL_EVENT_STOP with a quick stop: the bumper frees, PAUSE releases.
 ctl quick-stop 1 >/dev/null
-wait_for "$SCR/watch.out" "instr 0x40 .* 00 00" 10
+wait_line "$SCR/watch.out" "instr 0x40 .* 00 00" 10
 tap_ok "quick stop: PSC1 PAUSE released (event 00 00)" grep -qE "instr 0x40 .* 00 00" "$SCR/watch.out"
 sed 's/^/# watch: /' "$SCR/watch.out"
 kill "$R"

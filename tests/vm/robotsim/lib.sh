@@ -18,7 +18,7 @@ robotsim_cleanup() {
 	ip link del "$IF" 2>/dev/null
 	modprobe -r vcan can_raw can 2>/dev/null
 	rs485_cleanup
-	net_teardown
+	lcm_net_down
 }
 
 # robotsim_up PROGRAM...: everything but robot-sim; bails out if a program
@@ -26,7 +26,7 @@ robotsim_cleanup() {
 robotsim_up() {
 	rs485_setup "$SIMBIN/rs485-sim" "$ROBOT_SIM" "$POSE" "$CANOPENCTL" "$@"
 	trap robotsim_cleanup EXIT
-	net_setup || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
+	lcm_net_up || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
 	modprobe n_rs485 || { echo "Bail out! modprobe n_rs485"; exit 1; }
 	if ! modprobe vcan || ! ip link add dev "$IF" type vcan || ! ip link set up "$IF"; then
 		echo "Bail out! cannot set up $IF"
@@ -53,7 +53,7 @@ start_robot() {
 	bg "$ROBOT_SIM" -m "$CONF/room.yaml" -r "$SCR/robot.yaml" --can "$IF" --rs485-control "$CTL" --lcm --print \
 		>"$SCR/robot.out" 2>"$SCR/robot.err"
 	R=$LAST_BG
-	wait_for "$SCR/robot.out" "^drives on $IF" 20 || { sed 's/^/# robot.err: /' "$SCR/robot.err"; exit 1; }
+	wait_line "$SCR/robot.out" "^drives on $IF" 20 || { sed 's/^/# robot.err: /' "$SCR/robot.err"; exit 1; }
 }
 
 ctl() { "$CANOPENCTL" -i "$IF" -t 1000 "$@"; }
@@ -64,14 +64,25 @@ cond() { eval "$1"; }
 
 # wait_status NODE MASK SECONDS: until the statusword has every bit of MASK
 # (canopenctl takes a second or so per call under TCG); prints the last one.
+status_has() {
+	STATUS=$(ctl read "$1" 6041 u16)
+	(( (${STATUS%% *} & $2) == $2 ))
+}
 wait_status() {
-	local i st
-	for ((i = 0; i < $3; i++)); do
-		st=$(ctl read "$1" 6041 u16)
-		(( (${st%% *} & $2) == $2 )) && break
-		sleep 1
-	done
-	echo "$st"
+	wait_until "$3" status_has "$1" "$2"
+	echo "$STATUS"
+}
+# wait_position NODE UNITS SECONDS: until the drive's position (0x6064) is
+# within 4 units of UNITS.
+position_at() { close_to "$(ctl read "$1" 6064 i32 | cut -d' ' -f1)" "$2" 4; }
+wait_position() { wait_until "$3" position_at "$1" "$2"; }
+
+# at_wall: the latest true pose (in P) has the robot stopped at the east
+# wall: 9.0 < x <= 9.1 (front bumper at 10.0), speed 0, PAUSE engaged.
+at_wall() {
+	P=$(pose)
+	awk -v x="$(field "$P" x)" 'BEGIN { exit !(x > 9.0 && x <= 9.1) }' &&
+		[ "$(field "$P" speed) $(field "$P" engaged)" = '0.0000 1' ]
 }
 
 # epos_velocity RPM: the EPOS (node 1) in profile velocity at RPM, enabled.

@@ -8,7 +8,6 @@
 # follows. The robot never gets past the wall (robot-sim's printed poses).
 . "$(dirname "$0")/lib.sh"
 
-PROBE=$VMTEST_BUILD/userland/daemons/driver_rs485/advee-daemons-probe
 DRIVER_POWER=$VMTEST_BUILD/userland/daemons/driver_power/driver_power
 robotsim_up "$PROBE" "$DRIVER_POWER"
 tap_plan 6
@@ -23,28 +22,26 @@ driver_power:
   reboot_command: ["false"]
 EOC
 bg "$DRIVER_POWER" --config "$SCR/power.yaml" 2>"$SCR/power.err"
+DP=$LAST_BG
 
 # Front bumper 1.1 m from the east wall (x = 8.9 of 10), heading east.
 robot_yaml 8.0 2.0 0
 start_robot
-sleep 2  # driver_power attached and subscribed
-
-bg "$PROBE" listen 60 LL_EVENT_STOP >"$SCR/stop.out"
-sleep 1
+wait_state driver_power 3 30 "$DP" >/dev/null || sed 's/^/# power.err: /' "$SCR/power.err"
+listen_bg "$SCR/stop.out" LL_EVENT_STOP
 epos_velocity 993  # 0.5 m/s: at the wall in 2.2 s
-wait_for "$SCR/stop.out" '^LL_EVENT_STOP .* stop=1 ' 30
+wait_line "$SCR/stop.out" '^LL_EVENT_STOP .* stop=1 ' 30
 s1=$(grep '^LL_EVENT_STOP ' "$SCR/stop.out" | head -1)
 tap_diag "$s1"
 tap_is "bumper: LL_EVENT_STOP stop=1 from the PSC1 (source 0)" "$(field "$s1" stop) $(field "$s1" source)" "1 0"
-sleep 1
-p=$(pose)
-tap_diag "at the wall: $p"
-tap_ok "robot at the wall with PAUSE engaged, speed 0" \
-	cond "awk -v x='$(field "$p" x)' 'BEGIN { exit !(x > 9.0 && x <= 9.1) }' && test '$(field "$p" speed) $(field "$p" engaged)' = '0.0000 1'"
+wait_until 10 at_wall
+r=$?
+tap_diag "at the wall: $P"
+tap_result $r "robot at the wall with PAUSE engaged, speed 0"
 tap_is "EPOS still turning (nobody stopped it yet): 993 rpm" "$(ctl read 1 606c i32 | cut -d' ' -f1)" 993
 
 ctl quick-stop 1 >/dev/null
-wait_for "$SCR/stop.out" '^LL_EVENT_STOP .* stop=0 ' 15
+wait_line "$SCR/stop.out" '^LL_EVENT_STOP .* stop=0 ' 15
 s2=$(grep '^LL_EVENT_STOP ' "$SCR/stop.out" | sed -n 2p)
 tap_diag "$s2"
 tap_is "quick stop: PAUSE released, LL_EVENT_STOP stop=0" "$(field "$s2" stop)" 0

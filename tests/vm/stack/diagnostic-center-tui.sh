@@ -8,12 +8,9 @@
 # a module; the errors view shows the supervisor's report; the layout follows
 # a resize; quitting during a manual drive sends a zero command and exits 0.
 . "$(dirname "$0")/lib.sh"
+stack_require diagnostic-center
 
 tap_plan 17
-if ! stack_has diagnostic-center; then
-	tap_diag "missing: $(stack_missing | tr '\n' ';')"
-	exit 1
-fi
 if ! stack_up; then
 	tap_diag "the stack did not come up"
 	stack_logs 20
@@ -26,16 +23,12 @@ DC_EXIT=$STACK_RUN/dc.exit
 tmux_() { tmux -S "$TSOCK" "$@"; }
 screen() { tmux_ capture-pane -p -t dc; }
 keys() { tmux_ send-keys -t dc "$@"; }
-# Waits are deadlines in seconds, not iteration counts: under TCG one
-# capture-pane costs a large part of a second.
+# Waits are deadlines in seconds (wait_until, tests/lib/wait.sh), not
+# iteration counts: under TCG one capture-pane costs a large part of a second.
 # wait_screen ERE SECONDS: true once the screen has a line matching ERE.
+on_screen() { screen | grep -qE -- "$1"; }
 wait_screen() {
-	local end=$((SECONDS + $2))
-	while :; do
-		screen | grep -qE -- "$1" && return 0
-		[ "$SECONDS" -ge "$end" ] && break
-		sleep 0.2
-	done
+	wait_until "$2" on_screen "$1" && return 0
 	screen | sed 's/^/#| /'
 	return 1
 }
@@ -47,22 +40,7 @@ all_run() {
 		grep -qE "^$1$m +RUN " <<<"$s" || { echo "$m not in RUN on screen"; printf '%s\n' "$s" | sed 's/^/| /'; return 1; }
 	done
 }
-wait_all_run() {
-	local end=$((SECONDS + $2))
-	until all_run "$1" >/dev/null; do
-		[ "$SECONDS" -ge "$end" ] && { all_run "$1"; return 1; }
-		sleep 0.2
-	done
-}
-# until_true SECONDS CMD...: retry CMD until it succeeds or the time is up.
-until_true() {
-	local end=$((SECONDS + $1))
-	shift
-	until "$@"; do
-		[ "$SECONDS" -ge "$end" ] && return 1
-		sleep 0.2
-	done
-}
+wait_all_run() { wait_until "$2" all_run "$1" >/dev/null || all_run "$1"; }
 # row NAME: the module view's row of NAME, without the selection mark:
 # "name state pid age phase restarts exit next".
 row() { screen | sed -n "s/^[> ] \($1 .*\)/\1/p" | head -1; }
@@ -89,7 +67,7 @@ observe 3 >"$STACK_RUN/obs-drive.txt" &
 OBS=$!
 "$PROBE" listen 3 LL_CMD_MOTION >"$STACK_RUN/probe-motion.txt" &
 PRB=$!
-sleep 0.5
+wait_lcm_listening "$OBS" 20 && wait_lcm_listening "$PRB" 20 || tap_diag "the observers did not subscribe"
 keys Up Up Left
 tap_ok "up, up, left: the title shows MANUAL +0.20 m/s +5 deg" \
 	wait_screen 'MANUAL \+0\.20 m/s \+5 deg' 5
@@ -137,7 +115,7 @@ restarted() {
 	[ "$2" = RUN ] && [ "$3" != "$old_pid" ] && [ "$3" -gt 0 ] 2>/dev/null && [ "$6" != - ] &&
 		[ "$6" -gt "$old_restarts" ]
 }
-until_true 25 restarted
+wait_until 25 restarted
 dt=$(( ($(date +%s%N) - t0) / 1000000 ))
 set -- $(row driver_aux)
 tap_diag "driver_aux after SIGSTOP ($dt ms): $*"
@@ -172,7 +150,7 @@ rs_new() {
 	set -- $(row driver_rs485b)
 	[ "$2" = RUN ] && [ "$3" != "$rs_pid" ] && [ "$5" = RUNNING ]
 }
-until_true 20 rs_new
+wait_until 20 rs_new
 tap_ok "r: driver_rs485b runs again with a new pid ($rs_pid -> $(row driver_rs485b | awk '{ print $3 }'))" rs_new
 
 # 13-14: resize to 100x30 and back to 80x24.
@@ -190,18 +168,18 @@ small_layout() {
 		printf '%s\n' "$s" | grep -q '^driver_aux  *RUN '
 }
 tmux_ resize-window -t dc -x 100 -y 30
-tap_ok "resized to 100x30: the full title, the help line on line 30" until_true 5 big_layout
+tap_ok "resized to 100x30: the full title, the help line on line 30" wait_until 5 big_layout
 tmux_ resize-window -t dc -x 80 -y 24
-tap_ok "back to 80x24: the help line on line 24, the module rows" until_true 5 small_layout
+tap_ok "back to 80x24: the help line on line 24, the module rows" wait_until 5 small_layout
 
 # 15-17: quit in the middle of a manual drive.
 keys Up
 wait_screen 'MANUAL \+0\.10' 5 >/dev/null
 observe 2.5 >"$STACK_RUN/obs-quit.txt" &
 OBS=$!
-sleep 0.7
+wait_lcm_listening "$OBS" 20 || tap_diag "the observer did not subscribe"
 keys q
-until_true 5 test -s "$DC_EXIT"
+wait_until 5 test -s "$DC_EXIT"
 tap_is "q: diagnostic_center exits 0" "$(cat "$DC_EXIT" 2>/dev/null)" 0
 wait "$OBS"
 last=$(grep '^motion' "$STACK_RUN/obs-quit.txt" | tail -1)

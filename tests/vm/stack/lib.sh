@@ -13,6 +13,8 @@
 #                       unloads the modules (also on EXIT: stack_up sets a trap)
 #   stack_missing       the pieces of the stack not built yet (one per line)
 #   stack_has PIECE     canbus | robot-can | sim-pose | diagnostic-center
+#   stack_require PIECE...  a test needs them: a missing one fails the
+#                       program (a failing TAP point naming it), never a skip
 #
 # Variables after stack_up: STACK_RUN (scratch dir: conf/, logs, sockets),
 # STACK_MODULES (names the supervisor runs), STACK_ROBOT_DRIVES (can: the
@@ -21,6 +23,7 @@
 # STACK_DEBUG=1 prints what is started on stderr.
 
 . "$VMTEST_REPO/tests/lib/tap.sh"
+. "$VMTEST_REPO/tests/lib/lcm.sh"
 
 STACK_UL=$VMTEST_BUILD/userland
 STACK_CONF_SRC=$VMTEST_REPO/tests/vm/stack/conf
@@ -41,15 +44,11 @@ DIAGNOSTIC_CENTER=$STACK_UL/diagcenter/diagnostic_center
 ROBOTSIM_CONF=${STACK_ROBOTSIM_CONF:-$STACK_USERLAND_SRC/robotsim/conf}
 SIMFS=/sys/kernel/debug/ts7800-sim
 
-# LCM over UDP multicast on the guest's loopback (docs/modules.md).
-export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
-
 STACK_RUN=
 STACK_PIDS=
 STACK_MODULES=
 STACK_ROBOT_DRIVES=
 STACK_LOADED=
-STACK_ROUTE_ADDED=0
 STACK_DEBUGFS_MOUNTED=0
 STACK_VCAN_ADDED=0
 STACK_RS485_SIM_PID=
@@ -88,16 +87,17 @@ stack_missing() {
 	return 0
 }
 
-# stack_require PIECE...: skip the whole test program (TAP "1..0 # SKIP",
-# exit 4) naming what is missing, before tap_plan.
+# stack_require PIECE...: before tap_plan. Every piece of the stack is built
+# by make userland, so a missing one is a defect: the program fails with one
+# TAP point naming what is missing (exit 1).
 stack_require() {
 	local p missing=
 	for p in "$@"; do
 		stack_has "$p" || missing="${missing:+$missing, }$(stack_missing | grep -m1 "^$(stack_piece_name "$p")")"
 	done
 	[ -z "$missing" ] && return 0
-	printf 'TAP version 13\n1..0 # SKIP missing: %s\n' "$missing"
-	exit 4
+	printf 'TAP version 13\n1..1\nnot ok 1 the stack is complete: missing %s\n' "$missing"
+	exit 1
 }
 stack_piece_name() {
 	case $1 in
@@ -108,12 +108,6 @@ stack_piece_name() {
 	esac
 }
 
-# stack_field LINE KEY: the value of KEY=value in a decoded line.
-stack_field() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p" | head -1; }
-
-# stack_close VALUE WANT TOLERANCE: |VALUE - WANT| <= TOLERANCE (numbers).
-stack_close() { awk -v v="$1" -v w="$2" -v t="$3" 'BEGIN { d = v - w; if (d < 0) d = -d; exit !(v != "" && d <= t) }'; }
-
 # stack_bg NAME CMD...: CMD in the background, output in $STACK_RUN/NAME.log;
 # sets STACK_LAST_PID.
 stack_bg() {
@@ -123,25 +117,6 @@ stack_bg() {
 	"$@" >"$STACK_RUN/$name.log" 2>&1 &
 	STACK_LAST_PID=$!
 	STACK_PIDS="$STACK_LAST_PID $STACK_PIDS"
-}
-
-# stack_wait_file FILE REGEX SECONDS: true once a line of FILE matches.
-stack_wait_file() {
-	local i
-	for ((i = 0; i < $3 * 10; i++)); do
-		grep -qE "$2" "$1" 2>/dev/null && return 0
-		sleep 0.1
-	done
-	return 1
-}
-
-stack_wait_path() {
-	local i
-	for ((i = 0; i < $2 * 10; i++)); do
-		[ -e "$1" ] && return 0
-		sleep 0.1
-	done
-	return 1
 }
 
 stack_modprobe() {	# stack_modprobe MODULE...: load, remembered for stack_down
@@ -164,14 +139,9 @@ stack_kernel_up() {
 	local p
 	for p in /dev/ttyTSU0 /dev/ttyTSU1 /dev/ttyTSU2 /dev/ts7800-sim/uart0 /dev/ts7800-sim/uart1 \
 		/dev/ts7800-sim/uart2 "$SIMFS/max6615/temp1"; do
-		stack_wait_path "$p" 10 || { echo "stack: $p did not appear" >&2; return 1; }
+		wait_path "$p" 10 || { echo "stack: $p did not appear" >&2; return 1; }
 	done
-	local i
-	for i in $(seq 50); do
-		grep -q '^max6615$' /sys/class/hwmon/hwmon*/name 2>/dev/null && break
-		sleep 0.1
-	done
-	grep -q '^max6615$' /sys/class/hwmon/hwmon*/name 2>/dev/null ||
+	wait_until 5 grep -q '^max6615$' /sys/class/hwmon/hwmon*/name 2>/dev/null ||
 		{ echo "stack: no max6615 hwmon device" >&2; return 1; }
 	if ! ip link show vcan0 >/dev/null 2>&1; then
 		ip link add dev vcan0 type vcan || return 1
@@ -179,15 +149,6 @@ stack_kernel_up() {
 	fi
 	ip link set vcan0 txqueuelen 1000
 	ip link set up vcan0 || return 1
-}
-
-# stack_net_up: loopback with a multicast route, for LCM's UDP multicast.
-stack_net_up() {
-	ip link set lo up || return 1
-	if ! ip route show table all | grep -q '^multicast\|224.0.0.0/4'; then
-		ip route add 224.0.0.0/4 dev lo || return 1
-		STACK_ROUTE_ADDED=1
-	fi
 }
 
 # stack_conf: the daemons' configurations. The robot's own files
@@ -264,7 +225,13 @@ stack_robot_up() {
 	stack_has sim-pose && args+=(--lcm)
 	stack_bg robot-sim "$ROBOT_SIM" "${args[@]}" "$@"
 	STACK_ROBOT_SIM_PID=$STACK_LAST_PID
-	sleep 0.5
+	# With its CAN drives it says when they are on the bus; the path
+	# fallback has no such line (the checks after stack_wait_run see it).
+	if [ "$STACK_ROBOT_DRIVES" = can ] && ! wait_line "$STACK_RUN/robot-sim.log" '^drives on vcan0' 20 >/dev/null; then
+		echo "stack: robot-sim did not put its drives on vcan0:" >&2
+		tail -5 "$STACK_RUN/robot-sim.log" >&2
+		return 1
+	fi
 	kill -0 "$STACK_ROBOT_SIM_PID" 2>/dev/null ||
 		{ echo "stack: robot-sim exited:" >&2; tail -5 "$STACK_RUN/robot-sim.log" >&2; return 1; }
 }
@@ -296,13 +263,13 @@ stack_up() {
 	for p in "$RS485_SIM" "$ROBOT_SIM" "$WATCHDOG" "$DRIVER_AUX" "$DRIVER_RS485" "$DRIVER_POWER" "$LCMCTL"; do
 		[ -x "$p" ] || { echo "stack: $p not built (make userland)" >&2; return 1; }
 	done
-	stack_net_up || { echo "stack: cannot set up loopback multicast" >&2; return 1; }
+	lcm_net_up || { echo "stack: cannot set up loopback multicast" >&2; return 1; }
 	stack_kernel_up || return 1
 	stack_conf || return 1
 
 	stack_bg rs485-sim "$RS485_SIM" -c "$STACK_RUN/conf/boards.yaml" --control "$STACK_RUN/rs485-sim.sock"
 	STACK_RS485_SIM_PID=$STACK_LAST_PID
-	stack_wait_file "$STACK_RUN/rs485-sim.log" '^rs485-sim: ready' 20 ||
+	wait_line "$STACK_RUN/rs485-sim.log" '^rs485-sim: ready' 20 >/dev/null ||
 		{ echo "stack: rs485-sim did not start:" >&2; tail -5 "$STACK_RUN/rs485-sim.log" >&2; return 1; }
 
 	stack_robot_up "$@" || return 1
@@ -371,10 +338,7 @@ stack_down() {
 	for p in $STACK_LOADED; do modprobe -r "$p" 2>/dev/null; done
 	modprobe -r ts7800_fpga can_raw can 2>/dev/null
 	STACK_LOADED=
-	if [ "$STACK_ROUTE_ADDED" = 1 ]; then
-		ip route del 224.0.0.0/4 dev lo 2>/dev/null
-		STACK_ROUTE_ADDED=0
-	fi
+	lcm_net_down
 	if [ "$STACK_DEBUGFS_MOUNTED" = 1 ]; then
 		umount /sys/kernel/debug 2>/dev/null
 		STACK_DEBUGFS_MOUNTED=0

@@ -36,7 +36,7 @@ OUT=$STACK_RUN/listen.txt
 PATH_FILE=$ROBOTSIM_CONF/square-path.yaml
 "$STACK_LISTEN" --seconds 120 LL_DATA_ODO LL_DATA_SRFS LL_DATA_BEACONS LL_DATA_DRIVES SIM_DATA_POSE LL_CMD_MOTION CM_DATA_ERROR >"$OUT" &
 LISTEN=$!
-sleep 1
+wait_lcm_listening "$LISTEN" 20 || tap_diag "advee-stack-listen did not subscribe"
 t_start=$(awk '{ print $1 }' /proc/uptime)
 stack_drive "$PATH_FILE" --home --home-wait 3 --hold 3 --beacons 1,2,3,4,5,6,7,8
 wait "$STACK_DRIVE_PID"
@@ -44,7 +44,9 @@ rc=$?
 STACK_PIDS=${STACK_PIDS/$STACK_DRIVE_PID/}
 tap_is "advee-drive-script played the path (exit 0)" "$rc" 0
 sed 's/^/# /' "$STACK_RUN/drive-script.log"
-sleep 1.5	# one more beacon scan and range poll at the end pose
+# One more beacon scan, range poll and true pose at the end pose.
+end=$(wc -l <"$OUT")
+for ch in LL_DATA_BEACONS LL_DATA_SRFS SIM_DATA_POSE; do wait_line "$OUT" "^$ch " 10 "$end" >/dev/null; done
 kill "$LISTEN"
 wait "$LISTEN" 2>/dev/null
 tap_diag "messages: $(awk '{ print $1 }' "$OUT" | sort | uniq -c | awk '{ printf "%s %s, ", $2, $1 }')"
@@ -57,15 +59,15 @@ first=$(grep -m1 '^SIM_DATA_POSE ' "$OUT")
 last=$(grep '^SIM_DATA_POSE ' "$OUT" | tail -1)
 tap_diag "true start: $first"
 tap_diag "true end:   $last"
-x0=$(stack_field "$first" x) y0=$(stack_field "$first" y) h0=$(stack_field "$first" heading)
-x1=$(stack_field "$last" x) y1=$(stack_field "$last" y) h1=$(stack_field "$last" heading)
+x0=$(field "$first" x) y0=$(field "$first" y) h0=$(field "$first" heading)
+x1=$(field "$last" x) y1=$(field "$last" y) h1=$(field "$last" heading)
 dist=$(awk -v a="$x0" -v b="$y0" -v c="$x1" -v d="$y1" 'BEGIN { printf "%.3f", sqrt((c-a)^2 + (d-b)^2) }')
 tap_ok "the robot moved: the true end pose is $dist m from the start (> 2 m)" \
 	awk -v d="$dist" 'BEGIN { exit !(d > 2) }'
 vmax=$(grep '^SIM_DATA_POSE ' "$OUT" | tr ' ' '\n' | sed -n 's/^speed=//p' | sort -g | tail -1)
 tap_ok "the drives followed LL_CMD_MOTION: top true speed $vmax m/s (0.5 commanded, +-0.02)" \
-	stack_close "$vmax" 0.5 0.02
-tap_ok "the robot stands still after the path (true speed 0)" stack_close "$(stack_field "$last" speed)" 0 0.001
+	close_to "$vmax" 0.5 0.02
+tap_ok "the robot stands still after the path (true speed 0)" close_to "$(field "$last" speed)" 0 0.001
 
 # Odometry: every LL_DATA_ODO interval as one arc, from the true start pose.
 read -r xo yo ho n_odo < <(grep '^LL_DATA_ODO ' "$OUT" | awk -v x="$x0" -v y="$y0" -v h="$h0" '
@@ -80,7 +82,7 @@ read -r perr herr < <(awk -v a="$xo" -v b="$yo" -v c="$x1" -v d="$y1" -v h="$ho"
 	printf "%.3f %.2f\n", sqrt((c-a)^2 + (d-b)^2), (e < 0 ? -e : e) * 180 / pi }')
 tap_diag "odometry ($n_odo LL_DATA_ODO): x=$xo y=$yo heading=$ho; truth x=$x1 y=$y1 heading=$h1"
 ticks=$(grep '^LL_DATA_ODO ' "$OUT" | tr ' ' '\n' | awk -F= '$1 == "ticks_left" { l += $2 } $1 == "ticks_right" { r += $2 } END { print l + 0, r + 0 }')
-enc="$(stack_field "$last" ticks_left) $(stack_field "$last" ticks_right)"
+enc="$(field "$last" ticks_left) $(field "$last" ticks_right)"
 tap_ok "LL_DATA_ODO counted every encoder tick (odometry $ticks, encoders $enc, +-2 each; a poll gap > 1 s restarts the baseline and loses ticks)" \
 	awk -v a="$ticks" -v b="$enc" 'BEGIN { split(a, x, " "); split(b, y, " "); d1 = x[1] - y[1]; d2 = x[2] - y[2]; exit !(d1 * d1 <= 4 && d2 * d2 <= 4) }' 
 tap_diag "odometry error after $dist m from the start: $perr m, $herr degrees"
