@@ -43,11 +43,13 @@ start=$(wc -l <"$ALL")
 # tests/lib/lcm.sh): the window lasts until every 1 Hz channel has 5.
 OUT=$STACK_RUN/periodic.txt
 PERIODIC="LL_DATA_SRFS LL_DATA_ODO LL_DATA_DRIVES LL_DATA_BEACONS LL_DATA_POWER LL_DATA_TEMPERATURE LL_DATA_FANS"
+# window_full: 5 of each periodic channel and of each module's CM_DATA_STATE
+# (one awk pass: under TCG every process started costs).
 window_full() {
-	local ch m
-	tail -n +"$((start + 1))" "$ALL" >"$OUT"
-	for ch in $PERIODIC; do [ "$(grep -c "^$ch " "$OUT")" -ge 5 ] || return 1; done
-	for m in watchdog $STACK_MODULES; do [ "$(grep -c "^CM_DATA_STATE .* module=$m " "$OUT")" -ge 5 ] || return 1; done
+	awk -v from="$((start + 1))" -v want="$PERIODIC" -v mods="watchdog $STACK_MODULES" -v out="$OUT" '
+		NR >= from { print >out; if ($1 == "CM_DATA_STATE") { for (i = 2; i <= NF; i++) if ($i ~ /^module=/) n[$i]++ } else n[$1]++ }
+		END { k = split(want, c, " "); for (i = 1; i <= k; i++) if (n[c[i]] < 5) exit 1
+			k = split(mods, m, " "); for (i = 1; i <= k; i++) if (n["module=" m[i]] < 5) exit 1 }' "$ALL"
 }
 wait_until 30 window_full || tap_diag "the window did not fill in 30 s"
 kill "$STACK_DRIVE_PID"
