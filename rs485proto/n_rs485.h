@@ -170,7 +170,8 @@ int rs485_req_submit(struct rs485_bus *bus, struct rs485_req *req);
 int rs485_req_wait(struct rs485_bus *bus, struct rs485_req *req);
 void rs485_xact_work(struct work_struct *work);
 void rs485_xact_kill(struct rs485_bus *bus);
-bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned int len);
+bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned int len,
+			     u32 attempt);
 void rs485_rx_corrupt_from(struct rs485_bus *bus, u8 addr, u32 attempt);
 u32 rs485_rx_addr_seen(struct rs485_bus *bus, u8 addr);
 

@@ -50,7 +50,7 @@ static void rs485_rx_deliver(struct rs485_bus *bus)
 	const u8 *frame = bus->rx.buf;
 	unsigned int len = bus->rx.pos;
 
-	if (!rs485_rx_frame_for_xact(bus, frame, len))
+	if (!rs485_rx_frame_for_xact(bus, frame, len, bus->rx.attempt))
 		rs485_event_queue(bus, frame, len);
 }
 

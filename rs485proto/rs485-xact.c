@@ -358,7 +358,8 @@ void rs485_xact_kill(struct rs485_bus *bus)
 }
 
 /* Does the waiting request take this valid frame? Called by the RX machine. */
-bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned int len)
+bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned int len,
+			     u32 attempt)
 {
 	bool taken = false, wake = false;
 	struct rs485_req *req;
@@ -375,6 +376,14 @@ bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned in
 		/* A write() request's response goes to read(). */
 		taken = req->is_xfer;
 		wake = true;
+	} else if (req && bus->resp_state == RS485_RESP_STARTED && attempt == bus->attempt &&
+		   frame[0] == req->frame.addr) {
+		/*
+		 * The address character that made the response "started" was
+		 * a whole frame of the node that is not the response (an event,
+		 * a late answer): nothing of the response has arrived yet.
+		 */
+		bus->resp_state = RS485_RESP_WAIT;
 	}
 	spin_unlock_irqrestore(&bus->lock, flags);
 	if (wake)

@@ -8,7 +8,9 @@
  * or by an overrun of the UART's RX FIFO (the simulated CPU ignores
  * interrupts meanwhile); the retry must be a RESEND, the instruction runs
  * once. RESEND, once set, stays set for later retries (also after a timeout
- * of the RESEND). The last attempt's cut response ends as N_RS485_BADCRC.
+ * of the RESEND). A whole frame of the node that is not the response (an
+ * event) does not count as its start: the retry is then a plain repeat.
+ * The last attempt's cut response ends as N_RS485_BADCRC.
  * Every request, retries included, follows the previous frame after at
  * least 2 idle characters (line log of the wire).
  */
@@ -61,7 +63,7 @@ int main(void)
 	int fd, wfd;
 	int64_t min;
 
-	tap_plan(16);
+	tap_plan(17);
 	fd = bus_logged_setup(PORT, &s, &wfd);
 	line_scan_start(&ls, wfd);
 
@@ -74,6 +76,20 @@ int main(void)
 	/* sticky RESEND: cut, the RESEND times out, the next retry is a RESEND again */
 	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 1, N_RS485_OK, 3);
 	cut_case(fd, &s, I_CUT_SILENT, "silence", 2, 2, N_RS485_TIMEOUT, 3);
+	/* an event frame of the node is not its response: after it, a plain repeat */
+	{
+		unsigned int e0 = s.executions[I_EVENT_SILENT], r0 = s.resends;
+		struct n_rs485_xfer x;
+		int ret;
+
+		ret = xfer(fd, &x, SLAVE_ADDR, I_EVENT_SILENT, 0, NULL, 0, LONG_US, 2);
+		line_scan_read(&ls);
+		tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 2 &&
+		       s.executions[I_EVENT_SILENT] - e0 == 2 && s.resends == r0,
+		       "an event frame of the node, then no answer: the retry repeats the request "
+		       "(status %u, attempts %u, executed %u times, %u RESENDs)", x.status,
+		       x.attempts, s.executions[I_EVENT_SILENT] - e0, s.resends - r0);
+	}
 	/* no retry left: the cut response is the outcome */
 	cut_case(fd, &s, I_CUT_BREAK, "a break", 0, 0, N_RS485_BADCRC, 1);
 

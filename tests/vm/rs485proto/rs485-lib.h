@@ -55,6 +55,11 @@ enum {
 	 */
 	I_CUT_OVERRUN = 0x0e,
 	I_DELAY = 0x0f,		/* ACK after slave.delay_us, data = request data */
+	/*
+	 * Every other execution (the 1st, 3rd...) sends an EVENT frame of its
+	 * own and no answer; the others answer ACK.
+	 */
+	I_EVENT_SILENT = 0x10,
 };
 
 #define CUT_DATA	4	/* data bytes of the whole answer of I_CUT_* */
@@ -297,6 +302,12 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 	case I_CUT_OVERRUN:
 		len = OVERRUN_DATA;
 		memset(r + 4, instr, len);
+		break;
+	case I_EVENT_SILENT:
+		if (s->executions[instr] % 2) {
+			slave_send(s, ev, event_frame(s->executions[instr], ev), 0);
+			return;
+		}
 		break;
 	default:
 		r[2] = N_RS485_RESP_UNKINSTR;
