@@ -126,6 +126,7 @@ struct rs485_bus {
 	 */
 	ktime_t line_free;
 	ktime_t rx_last;
+	ktime_t rx_busy_until;		/* under lock: rest of a broken frame */
 
 	/*
 	 * N_RS485_CFG_ECHO: the frame being sent, which the first characters

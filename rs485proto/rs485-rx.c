@@ -64,6 +64,29 @@ static void rs485_rx_abort(struct rs485_bus *bus, u64 *counter)
 	rs485_rx_reset(bus);
 }
 
+/*
+ * The frame in progress lost characters (overrun) or was hit by a framing
+ * error or break: its sender may still be sending the rest. If its LEN is
+ * known, the line may be busy for the characters it still announced, and
+ * the next request waits for them (rx_busy_until) as well as the gap.
+ */
+static void rs485_rx_abort_lost(struct rs485_bus *bus, u64 *counter)
+{
+	struct rs485_rx *rx = &bus->rx;
+	unsigned int total = N_RS485_HEADER_LEN + rx->buf[3] + 1;	/* + CRC */
+	unsigned long flags;
+	ktime_t until;
+
+	if (rx->pos >= N_RS485_HEADER_LEN && total > rx->pos) {
+		spin_lock_irqsave(&bus->lock, flags);
+		until = ktime_add_ns(ktime_get(), (total - rx->pos) * rs485_char_ns(bus));
+		if (ktime_after(until, bus->rx_busy_until))
+			bus->rx_busy_until = until;
+		spin_unlock_irqrestore(&bus->lock, flags);
+	}
+	rs485_rx_abort(bus, counter);
+}
+
 static void rs485_rx_replay(struct rs485_bus *bus);
 
 static void rs485_rx_start(struct rs485_bus *bus, u8 addr)
@@ -223,12 +246,12 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 			/* An extra NUL: a character was lost before this point. */
 			rs485_rx_count(bus, &bus->stats.rx_overruns);
 			if (bus->rx.state != RS485_RX_IDLE)
-				rs485_rx_abort(bus, &bus->stats.rx_truncated);
+				rs485_rx_abort_lost(bus, &bus->stats.rx_truncated);
 			break;
 		default:	/* TTY_FRAME, TTY_BREAK */
 			rs485_rx_count(bus, &bus->stats.rx_framing);
 			if (bus->rx.state != RS485_RX_IDLE)
-				rs485_rx_abort(bus, &bus->stats.rx_truncated);
+				rs485_rx_abort_lost(bus, &bus->stats.rx_truncated);
 			break;
 		}
 	}

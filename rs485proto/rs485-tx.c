@@ -250,13 +250,23 @@ int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 	ktime_t start;
 	int ret, echo_ret;
 
-	/* The gap after the last frame on the line, whichever direction. */
-	spin_lock_irqsave(&bus->lock, flags);
-	start = ktime_add_ns(bus->rx_last, gap_ns);
-	spin_unlock_irqrestore(&bus->lock, flags);
-	if (ktime_before(start, bus->line_free))
-		start = bus->line_free;
-	rs485_sleep_until(bus, start);
+	/*
+	 * The gap after the last frame on the line, whichever direction,
+	 * and after what a broken frame still announced; characters that
+	 * arrive meanwhile (the rest of a frame) start it again.
+	 */
+	for (;;) {
+		spin_lock_irqsave(&bus->lock, flags);
+		start = ktime_add_ns(bus->rx_last, gap_ns);
+		if (ktime_before(start, ktime_add_ns(bus->rx_busy_until, gap_ns)))
+			start = ktime_add_ns(bus->rx_busy_until, gap_ns);
+		spin_unlock_irqrestore(&bus->lock, flags);
+		if (ktime_before(start, bus->line_free))
+			start = bus->line_free;
+		if (!ktime_before(ktime_get(), start) || READ_ONCE(bus->dead))
+			break;
+		rs485_sleep_until(bus, start);
+	}
 	if (echo)
 		rs485_echo_expect(bus, buf, len);
 	rs485_rx_lenient(bus, true);
