@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "advee/module/manual_loop.hpp"
 #include "advee/module/module.hpp"
 #include "advee/module/subscription.hpp"
 #include "common/cmd_state_t.hpp"
@@ -57,12 +58,7 @@ class ModuleTest : public testing::Test {
     for (int i = 0; i < 4; ++i) m.run_once(0ms);
   }
   // `d` of module time in steps of `step`, the loop settling after each.
-  void spin(Module& m, std::chrono::milliseconds d, std::chrono::milliseconds step = 1ms) {
-    for (auto t = 0ms; t < d; t += step) {
-      clock.advance(step);
-      settle(m);
-    }
-  }
+  void spin(Module& m, std::chrono::milliseconds d) { run_manual(m, clock, d); }
   ManualTimers clock;
 };
 

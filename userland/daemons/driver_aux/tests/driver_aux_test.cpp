@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "advee/driver_aux/aux_driver.hpp"
+#include "advee/module/manual_loop.hpp"
 #include "advee/module/subscription.hpp"
 #include "lowlevel/data_fans_t.hpp"
 #include "lowlevel/data_temperature_t.hpp"
@@ -73,13 +74,7 @@ struct Rx {
 // followed by the loop passes that handle what became ready (memq delivers
 // on the pass after a publish). No wall-clock wait.
 module::ManualTimers clock_;
-void spin(module::Module& m, std::chrono::milliseconds d) {
-  for (auto t = 0ms; t < d; t += 1ms) {
-    clock_.advance(1ms);
-    for (int i = 0; i < 3 && m.run_once(0ms); ++i) {
-    }
-  }
-}
+void spin(module::Module& m, std::chrono::milliseconds d) { module::run_manual(m, clock_, d); }
 
 TEST_F(FakeHwmon, FindsTheDeviceByName) {
   auto d = HwmonDevice::find(root_, "max6615");

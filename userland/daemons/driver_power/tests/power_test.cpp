@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "advee/module/subscription.hpp"
+#include "advee/module/manual_loop.hpp"
 #include <mutex>
 
 #include "advee/driver_power/power_driver.hpp"
@@ -32,13 +33,7 @@ namespace {
 // on the pass after a publish). No wall-clock wait: the transport, the
 // events and the commands are synchronous.
 module::ManualTimers clock_;
-void spin(module::Module& m, std::chrono::milliseconds d) {
-  for (auto t = 0ms; t < d; t += 1ms) {
-    clock_.advance(1ms);
-    for (int i = 0; i < 3 && m.run_once(0ms); ++i) {
-    }
-  }
-}
+void spin(module::Module& m, std::chrono::milliseconds d) { module::run_manual(m, clock_, d); }
 
 struct Rx {
   std::vector<lowlevel::data_power_t> power;

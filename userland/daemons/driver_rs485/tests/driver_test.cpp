@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "advee/module/subscription.hpp"
+#include "advee/module/manual_loop.hpp"
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -33,13 +34,7 @@ namespace {
 // answers synchronously, and the driver measures odometry intervals on the
 // module's clock, so they are exact.
 module::ManualTimers clock_;
-void spin(module::Module& m, std::chrono::milliseconds d) {
-  for (auto t = 0ms; t < d; t += 1ms) {
-    clock_.advance(1ms);
-    for (int i = 0; i < 3 && m.run_once(0ms); ++i) {
-    }
-  }
-}
+void spin(module::Module& m, std::chrono::milliseconds d) { module::run_manual(m, clock_, d); }
 
 struct Rx {
   std::vector<lowlevel::data_srfs_t> srfs;
