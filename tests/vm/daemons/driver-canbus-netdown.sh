@@ -11,17 +11,8 @@ canbus_up "$DRIVER_CANBUS" "$PROBE" "$LCMCTL" "$WATCHDOG"
 
 tap_plan 6
 
-sim_drive epos -n 1 -p epos || { echo "Bail out! EPOS simulator"; exit 1; }
-sim_drive icla -n 2 -p icla || { echo "Bail out! IclA simulator"; exit 1; }
-
-# The slack of driver-canbus.sh for a loaded TCG guest.
-cat >"$SCR/canbus.yaml" <<EOC
-module: {name: driver_canbus, print_severity: notice, send_severity: notice}
-driver_canbus:
-  interface: $IF
-  propulsion: {heartbeat_ms: 250, master_timeout_ms: 2000}
-  steering: {heartbeat_ms: 250, master_timeout_ms: 2000}
-EOC
+canbus_sims_up
+canbus_config "$SCR/canbus.yaml"
 cat >"$SCR/watchdog.yaml" <<EOC
 module: {name: watchdog, print_severity: notice}
 supervisor:

@@ -19,20 +19,8 @@ tap_plan 22
 drives() { field "$(grep '^LL_DATA_DRIVES ' "$1" | tail -1)" "$2"; }
 errors_numbered() { grep -c "^CM_DATA_ERROR .* number=$2 " "$1"; }
 
-sim_drive epos -n 1 -p epos || { echo "Bail out! EPOS simulator"; exit 1; }
-sim_drive icla -n 2 -p icla || { echo "Bail out! IclA simulator"; exit 1; }
-
-# Heartbeats with more slack than on the robot (300 ms / 500 ms there): a
-# TCG guest on a busy host stalls for half a second now and then, and each
-# stall would otherwise read as a lost drive or a lost master.
-cat >"$SCR/canbus.yaml" <<EOC
-module: {name: driver_canbus, print_severity: notice, send_severity: notice}
-driver_canbus:
-  interface: $IF
-  command_timeout_s: 1.0
-  propulsion: {heartbeat_ms: 250, master_timeout_ms: 2000}
-  steering: {heartbeat_ms: 250, master_timeout_ms: 2000}
-EOC
+canbus_sims_up
+canbus_config "$SCR/canbus.yaml"
 
 candump_start "$IF" "$SCR/candump.log"
 listen_bg "$SCR/boot.out" LL_DATA_DRIVES CM_DATA_ERROR

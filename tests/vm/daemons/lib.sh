@@ -92,3 +92,24 @@ sim_drive() {
 	eval "SIM_$name=$!"
 	wait_line "$SCR/$name.log" "ready on" 20 >/dev/null
 }
+
+# canbus_sims_up: the EPOS (node 1) and the IclA (node 2) simulators; bails out.
+canbus_sims_up() {
+	sim_drive epos -n 1 -p epos || { echo "Bail out! EPOS simulator"; exit 1; }
+	sim_drive icla -n 2 -p icla || { echo "Bail out! IclA simulator"; exit 1; }
+}
+
+# canbus_config FILE: driver_canbus on $IF with heartbeats that have more
+# slack than on the robot (300 ms / 500 ms there): a TCG guest on a busy host
+# stalls for half a second now and then, and each stall would otherwise read
+# as a lost drive or a lost master.
+canbus_config() {
+	cat >"$1" <<EOC
+module: {name: driver_canbus, print_severity: notice, send_severity: notice}
+driver_canbus:
+  interface: $IF
+  command_timeout_s: 1.0
+  propulsion: {heartbeat_ms: 250, master_timeout_ms: 2000}
+  steering: {heartbeat_ms: 250, master_timeout_ms: 2000}
+EOC
+}
