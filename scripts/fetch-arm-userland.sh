@@ -20,8 +20,9 @@ cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$debarch
 arm_apt_opts "$debarch"
 
 # What the VM test programs run, by package (the x86_64 guest has them from
-# the host: scripts/packages.txt).
-tools=(bash coreutils grep sed mawk findutils diffutils procps util-linux mount kmod
+# the host: scripts/packages.txt). dash is /bin/sh, as on the host: busybox sh
+# would run its own applets (its modprobe, for one) for system() and sh -c.
+tools=(dash bash coreutils grep sed mawk findutils diffutils procps util-linux mount kmod
 	i2c-tools lm-sensors gpiod can-utils iproute2)
 tree=$cache/userland
 stamp=$tree/.advee-packages

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-2.0
 #
 # guest-run.sh JOBFILE: the test runner inside the VM (PID 1), for both lanes.
-# POSIX sh: it runs under the host's /bin/sh on x86_64 and busybox sh on ARM.
+# POSIX sh: it runs under /bin/sh, dash on both lanes (the host's on x86_64,
+# Debian's armhf one from scripts/fetch-arm-userland.sh on ARM).
 #
 # The job file (written by the host) sets:
 #   VMTEST_LANE            x86_64 | armhf
@@ -138,8 +139,8 @@ tap "# lane $VMTEST_LANE, kernel $(uname -r), $nmods module(s), $ntests program(
 # one modprobe call each way first (each process costs under TCG); only when
 # that fails, one by one, so that the point names the culprit.
 # unload_modules MODULE...: unload those that are loaded; sets $left to the
-# ones that stay. kmod takes them all in one call; busybox (ARM) knows no -r -a,
-# and a dependency order the list does not follow needs another pass.
+# ones that stay. kmod takes them all in one call; when that fails, one by
+# one, and a dependency order the list does not follow needs another pass.
 loaded_modules() {
 	echo "$*" | tr - _ | awk 'NR == FNR { for (i = 1; i <= NF; i++) ours[$i] = 1; next }
 		$1 in ours { print $1 }' - /proc/modules

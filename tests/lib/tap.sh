@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0
 # tap.sh - TAP 13 helpers for the project's shell tests (source it).
-# Works in bash and in busybox sh (the ARM lane).
+# Works in bash and in POSIX sh (dash).
 #   tap_plan N; tap_ok "desc" cmd args...; tap_is "desc" got want;
 #   tap_skip "desc" "reason"; tap_diag "text"; tap_finish (use as the exit code)
 #   tap_require_module MODULE (before tap_plan: skip the whole program without it)
