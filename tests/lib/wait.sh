@@ -90,7 +90,9 @@ _wait_udp() {
 	local inodes p
 	inodes=$(awk -v port="$(printf ':%04X' "$2")" '$2 ~ port "$" { printf "socket:[%s]\n", $10 }' /proc/net/udp)
 	[ -n "$inodes" ] || return 1
-	for p in $(pid_tree "$1"); do
+	# The process itself first: its descendants cost a pgrep each.
+	ls -l "/proc/$1/fd" 2>/dev/null | grep -qF "$inodes" && return 0
+	for p in $(pid_tree "$1" | tail -n +2); do
 		ls -l "/proc/$p/fd" 2>/dev/null | grep -qF "$inodes" && return 0
 	done
 	return 1

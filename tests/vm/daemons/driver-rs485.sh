@@ -48,7 +48,7 @@ wait_state driver_rs485a 3 30 "$A" >/dev/null || sed 's/^/# a.err: /' "$SCR/a.er
 wait_state driver_rs485b 3 30 "$B" >/dev/null || sed 's/^/# b.err: /' "$SCR/b.err" | tail -20
 
 # --- bus A: ranges, rates, odometry ---
-listen_for 9 15 LL_DATA_SRFS LL_DATA_ODO
+listen_for 13 20 LL_DATA_SRFS LL_DATA_ODO
 tap_rate "LL_DATA_SRFS at 4 Hz" "$SCR/listen.out" LL_DATA_SRFS 4
 tap_rate "LL_DATA_ODO at 4 Hz" "$SCR/listen.out" LL_DATA_ODO 4
 s=$(last LL_DATA_SRFS)
@@ -60,8 +60,12 @@ tap_is "rear SRFs as set: 3.00 m, 2.50 m; front IR 0.10 m, IR out of range -1" \
 	"$(field "$s" srf8) $(field "$s" srf9) $(field "$s" ir0) $(field "$s" ir1)" "3.000 2.500 0.100 -1.000"
 
 # 2048 ticks/s on a 2048-tick, 0.125 m wheel: 2 pi 0.125 = 0.7854 m/s straight.
+# The mean leaves out the first 4 intervals after the start (one of 0.88 m/s
+# was seen there under load; the fixed 2 s wait before did the same).
+awk '/^LL_DATA_ODO / && ++n <= 4 { next } { print }' "$SCR/listen.out" >"$SCR/straight.out"
+mv "$SCR/straight.out" "$SCR/listen.out"
 v=$(mean_field LL_DATA_ODO speed) w=$(mean_field LL_DATA_ODO yaw)
-tap_diag "straight: mean speed $v m/s, yaw rate $w rad/s (want 0.7854, 0); $(last LL_DATA_ODO)"
+tap_diag "straight: mean speed $v m/s, yaw rate $w rad/s over $(count LL_DATA_ODO) intervals (want 0.7854, 0); $(last LL_DATA_ODO)"
 tap_ok "straight at 2048 ticks/s: 0.785 m/s (+-4 %)" close_to "$v" 0.7854 0.031
 tap_ok "straight: yaw rate 0 (+-0.02 rad/s)" close_to "$w" 0 0.02
 
