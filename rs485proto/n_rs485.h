@@ -50,6 +50,7 @@ struct rs485_rx {
 	 */
 	bool lenient;			/* under bus->lock */
 	unsigned int pos;		/* bytes of frame.buf filled */
+	unsigned int left;		/* characters that may still come (rs485-rx.c) */
 	u32 attempt;			/* bus->attempt when the frame in progress began */
 	u8 buf[N_RS485_MAX_FRAME];	/* ADDR INSTR FLAGS LEN DATA */
 	/*
@@ -122,11 +123,13 @@ struct rs485_bus {
 	 * included: line_free is the end of the last request sent plus the gap
 	 * (worker only), rx_last when the last character was received (under
 	 * lock; receive_buf runs after the character ended, so the gap counted
-	 * from it is never short).
+	 * from it is never short), rx_busy_until when the characters that may
+	 * still come of a frame in progress or a broken one could have passed
+	 * at the earliest (under lock, see rs485-rx.c).
 	 */
 	ktime_t line_free;
 	ktime_t rx_last;
-	ktime_t rx_busy_until;		/* under lock: rest of a broken frame */
+	ktime_t rx_busy_until;
 
 	/*
 	 * N_RS485_CFG_ECHO: the frame being sent, which the first characters

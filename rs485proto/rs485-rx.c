@@ -24,6 +24,23 @@
  * The CRC still decides whether the frame is valid; a frame in which such a
  * guess mattered and that fails its CRC is parsed again by the flags.
  *
+ * The next request waits until the line has been idle for the gap after
+ * the end of every frame, whole or cut (spec "Timing and transactions").
+ * receive_buf sees a character only some time after it ended (a receive
+ * FIFO's trigger level or timeout, the interrupt, the flip buffer work), so
+ * "no character seen for the gap" is not "idle for the gap" while more of
+ * a frame may come. The machine therefore counts the characters that may
+ * still come (rx->left): the rest of the frame in progress (a maximum frame
+ * until its LEN has arrived), and after an overrun, a framing error or a
+ * break a maximum frame, less what arrives after it. A UART reports an
+ * overrun with the character it read when it noticed it, which arrived
+ * before the lost one, so neither where the frame stopped being whole nor
+ * how much of it is still to come is known, and the lost character may have
+ * begun a new frame; a sender that broke its frame may go on with anything.
+ * After each call the line counts as busy until those characters could
+ * have passed after the last one seen (rx_busy_until); a sender that pauses
+ * inside a frame moves that time on with every character it sends.
+ *
  * Runs only from receive_buf (one call at a time per tty), so rx needs no
  * lock; what it hands on is passed under bus->lock.
  */
@@ -33,6 +50,7 @@ void rs485_rx_reset(struct rs485_bus *bus)
 {
 	bus->rx.state = RS485_RX_IDLE;
 	bus->rx.pos = 0;
+	bus->rx.left = 0;
 }
 
 static void rs485_rx_count(struct rs485_bus *bus, u64 *counter)
@@ -65,26 +83,16 @@ static void rs485_rx_abort(struct rs485_bus *bus, u64 *counter)
 }
 
 /*
- * The frame in progress lost characters (overrun) or was hit by a framing
- * error or break: its sender may still be sending the rest. If its LEN is
- * known, the line may be busy for the characters it still announced, and
- * the next request waits for them (rx_busy_until) as well as the gap.
+ * A character was lost (TTY_OVERRUN) or arrived broken (TTY_FRAME,
+ * TTY_BREAK), counted in @counter: the frame in progress is aborted, and a
+ * maximum frame may still come (see the top of this file).
  */
-static void rs485_rx_abort_lost(struct rs485_bus *bus, u64 *counter)
+static void rs485_rx_broken(struct rs485_bus *bus, u64 *counter)
 {
-	struct rs485_rx *rx = &bus->rx;
-	unsigned int total = N_RS485_HEADER_LEN + rx->buf[3] + 1;	/* + CRC */
-	unsigned long flags;
-	ktime_t until;
-
-	if (rx->pos >= N_RS485_HEADER_LEN && total > rx->pos) {
-		spin_lock_irqsave(&bus->lock, flags);
-		until = ktime_add_ns(ktime_get(), (total - rx->pos) * rs485_char_ns(bus));
-		if (ktime_after(until, bus->rx_busy_until))
-			bus->rx_busy_until = until;
-		spin_unlock_irqrestore(&bus->lock, flags);
-	}
-	rs485_rx_abort(bus, counter);
+	rs485_rx_count(bus, counter);
+	if (bus->rx.state != RS485_RX_IDLE)
+		rs485_rx_abort(bus, &bus->stats.rx_truncated);
+	bus->rx.left = RS485_WIRE_MAX - 1;
 }
 
 static void rs485_rx_replay(struct rs485_bus *bus);
@@ -100,6 +108,7 @@ static void rs485_rx_start(struct rs485_bus *bus, u8 addr)
 		rs485_rx_abort(bus, &bus->stats.rx_truncated);
 	rx->buf[0] = addr;
 	rx->pos = 1;
+	rx->left = RS485_WIRE_MAX - 1;	/* until LEN says how many */
 	rx->state = RS485_RX_HEADER;
 	rx->guessed = false;
 	rx->nraw = 0;
@@ -126,6 +135,7 @@ static void rs485_rx_crc(struct rs485_bus *bus, u8 c)
 	struct rs485_rx *rx = &bus->rx;
 
 	rx->state = RS485_RX_IDLE;
+	rx->left = 0;
 	if (rs485_crc(rx->buf, rx->pos) == c) {
 		rs485_rx_deliver(bus);
 		return;
@@ -141,6 +151,8 @@ static void rs485_rx_data(struct rs485_bus *bus, u8 c)
 {
 	struct rs485_rx *rx = &bus->rx;
 
+	if (rx->left)
+		rx->left--;
 	switch (rx->state) {
 	case RS485_RX_IDLE:
 		rs485_rx_count(bus, &bus->stats.rx_noise);
@@ -149,6 +161,7 @@ static void rs485_rx_data(struct rs485_bus *bus, u8 c)
 		rx->buf[rx->pos++] = c;
 		if (rx->pos < N_RS485_HEADER_LEN)
 			return;
+		rx->left = c + 1;	/* DATA CRC */
 		rx->state = c ? RS485_RX_DATA : RS485_RX_CRC;
 		return;
 	case RS485_RX_DATA:
@@ -214,6 +227,7 @@ static int rs485_rx_echo(struct rs485_bus *bus, const u8 *cp, const char *fp, in
 
 void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int count)
 {
+	ktime_t now = ktime_get();	/* every character of this call has ended */
 	unsigned long flags;
 	bool lenient;
 	int i, echo;
@@ -224,7 +238,7 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 	 */
 	spin_lock_irqsave(&bus->lock, flags);
 	bus->stats.rx_bytes += count;
-	bus->rx_last = ktime_get();
+	bus->rx_last = now;
 	lenient = bus->rx.lenient;
 	if (bus->rx_flush) {
 		/* TCIFLUSH: the frame in progress is gone (rs485_flush_buffer()). */
@@ -244,15 +258,16 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 			break;
 		case TTY_OVERRUN:
 			/* An extra NUL: a character was lost before this point. */
-			rs485_rx_count(bus, &bus->stats.rx_overruns);
-			if (bus->rx.state != RS485_RX_IDLE)
-				rs485_rx_abort_lost(bus, &bus->stats.rx_truncated);
+			rs485_rx_broken(bus, &bus->stats.rx_overruns);
 			break;
 		default:	/* TTY_FRAME, TTY_BREAK */
-			rs485_rx_count(bus, &bus->stats.rx_framing);
-			if (bus->rx.state != RS485_RX_IDLE)
-				rs485_rx_abort_lost(bus, &bus->stats.rx_truncated);
+			rs485_rx_broken(bus, &bus->stats.rx_framing);
 			break;
 		}
 	}
+
+	/* Each of the characters that may still come takes its time after now. */
+	spin_lock_irqsave(&bus->lock, flags);
+	bus->rx_busy_until = ktime_add_ns(now, bus->rx.left * rs485_char_ns(bus));
+	spin_unlock_irqrestore(&bus->lock, flags);
 }

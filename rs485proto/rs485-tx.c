@@ -246,26 +246,34 @@ int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 	u64 gap_ns = bus->cfg.gap_chars * rs485_char_ns(bus);
 	bool echo = bus->cfg.flags & N_RS485_CFG_ECHO;
 	struct tty_port *port = bus->tty->port;
+	ktime_t busy, start, now;
 	unsigned long flags;
-	ktime_t start;
 	int ret, echo_ret;
 
 	/*
-	 * The gap after the last frame on the line, whichever direction,
-	 * and after what a broken frame still announced; characters that
-	 * arrive meanwhile (the rest of a frame) start it again.
+	 * The gap after the last frame on the line, whichever direction, and
+	 * after what a frame in progress or a broken one may still send
+	 * (rs485-rx.c). Characters that arrive meanwhile move it on, and a
+	 * frame's end comes closer once its LEN has arrived: look again at
+	 * least every gap. A cut response wakes the worker from inside
+	 * receive_buf, before that call has counted what may still come: let
+	 * it finish first.
 	 */
+	if (port)
+		flush_work(&port->buf.work);
 	for (;;) {
 		spin_lock_irqsave(&bus->lock, flags);
-		start = ktime_add_ns(bus->rx_last, gap_ns);
-		if (ktime_before(start, ktime_add_ns(bus->rx_busy_until, gap_ns)))
-			start = ktime_add_ns(bus->rx_busy_until, gap_ns);
+		busy = bus->rx_last;
+		if (ktime_after(bus->rx_busy_until, busy))
+			busy = bus->rx_busy_until;
 		spin_unlock_irqrestore(&bus->lock, flags);
+		start = ktime_add_ns(busy, gap_ns);
 		if (ktime_before(start, bus->line_free))
 			start = bus->line_free;
-		if (!ktime_before(ktime_get(), start) || READ_ONCE(bus->dead))
+		now = ktime_get();
+		if (!ktime_before(now, start) || READ_ONCE(bus->dead))
 			break;
-		rs485_sleep_until(bus, start);
+		rs485_sleep_until(bus, min_t(ktime_t, start, ktime_add_ns(now, gap_ns)));
 	}
 	if (echo)
 		rs485_echo_expect(bus, buf, len);
