@@ -50,8 +50,11 @@ enum {
 	I_CUT_ADDR = 0x0c,	/* ...by an address character (OTHER_ADDR), then silence */
 	I_CUT_BREAK = 0x0d,	/* ...by a break */
 	/*
-	 * The first answer has 40 data bytes and is sent while the simulated
-	 * CPU does not serve interrupts, so the UART's RX FIFO overruns.
+	 * The first answer has OVERRUN_DATA data bytes and is sent while the
+	 * simulated CPU does not serve interrupts, so the UART's RX FIFO
+	 * overruns; the slave serves interrupts again once the overrun has
+	 * happened, so most of the answer is still on the line when the
+	 * discipline learns of it.
 	 */
 	I_CUT_OVERRUN = 0x0e,
 	I_DELAY = 0x0f,		/* ACK after slave.delay_us, data = request data */
@@ -64,7 +67,7 @@ enum {
 
 #define CUT_DATA	4	/* data bytes of the whole answer of I_CUT_* */
 #define CUT_SENT	6	/* characters of it sent before the cut */
-#define OVERRUN_DATA	40
+#define OVERRUN_DATA	200
 
 static inline int sim_load(void)
 {
@@ -498,26 +501,35 @@ static inline void event_reader_stop(struct event_reader *r)
 /*
  * Idle line before every request, from the wire's line log: a request starts
  * with the start bit of its address character (a transmitted character with
- * the 9th bit); the line was idle since the end of the last character before
- * it, in either direction. Requests with no received character since the
- * previous request are repeats after a silence (a timeout, or no response
- * expected): their idle time runs from the end of that request.
+ * the 9th bit); the line was idle since the end of the last character that
+ * began before it, in either direction. The log holds each direction in the
+ * order its characters ended, the two interleaved as the simulator processed
+ * them, so each batch is ordered by start time first and the scan keeps the
+ * latest end seen: a request that starts while a received character is still
+ * on the line gives a negative idle time.
+ * Requests with no received character since the previous request are repeats
+ * after a silence (a timeout, or no response expected): their idle time runs
+ * from the end of that request. Characters that start while the other
+ * direction's last one is still on the line are counted as overlaps (a
+ * collision on a half-duplex bus).
  */
 #define LINE_SAMPLES	4096
 
 struct line_scan {
 	int wfd;		/* a wire fd of the bus's UART, log on */
 	/* state between reads */
-	int64_t prev_end;	/* end of the last character, either direction */
+	int64_t prev_end;	/* latest end of a character so far, either direction */
 	int rx_since_req;	/* a character was received since the last request */
+	int64_t dir_end[2];	/* latest end of a character, per TS7800_SIM_LOG_* */
 	/* results */
-	unsigned int requests, dropped;
+	unsigned int requests, dropped, overlaps;
 	unsigned int ngaps, nsilent;
 	int64_t gap_ns[LINE_SAMPLES];		/* idle before a request, after a response */
 	int64_t silent_ns[LINE_SAMPLES];	/* idle before a request, after a request */
 	unsigned int nresp;
 	int64_t resp_ns[LINE_SAMPLES];		/* end of a request to its response's start */
 	uint32_t char_ns;
+	struct ts7800_sim_line_event batch[TS7800_SIM_LOG_EVENTS];
 };
 
 static inline int line_scan_start(struct line_scan *ls, int wfd)
@@ -525,36 +537,61 @@ static inline int line_scan_start(struct line_scan *ls, int wfd)
 	memset(ls, 0, sizeof(*ls));
 	ls->wfd = wfd;
 	ls->prev_end = -1;
+	ls->dir_end[0] = -1;
+	ls->dir_end[1] = -1;
 	return wire_set_log(wfd, 1);
+}
+
+static inline int64_t line_event_start(const struct ts7800_sim_line_event *ev)
+{
+	return (int64_t)ev->end_ns - ev->char_ns;
+}
+
+/* By start time; a transmitted character before a received one that starts with it. */
+static inline int cmp_line_event(const void *a, const void *b)
+{
+	const struct ts7800_sim_line_event *x = a, *y = b;
+	int64_t sx = line_event_start(x), sy = line_event_start(y);
+
+	if (sx != sy)
+		return (sx > sy) - (sx < sy);
+	return (x->dir > y->dir) - (x->dir < y->dir);
 }
 
 /* Consume what the log holds now. */
 static inline void line_scan_read(struct line_scan *ls)
 {
-	struct ts7800_sim_line_event ev[256];
-	int n, i;
+	struct ts7800_sim_line_event *ev = ls->batch;
+	unsigned int n = 0, i;
+	int got;
 
-	while ((n = wire_read_log(ls->wfd, ev, 256, &ls->dropped)) > 0) {
-		for (i = 0; i < n; i++) {
-			int64_t start = (int64_t)ev[i].end_ns - ev[i].char_ns;
+	while (n < TS7800_SIM_LOG_EVENTS &&
+	       (got = wire_read_log(ls->wfd, ev + n, TS7800_SIM_LOG_EVENTS - n, &ls->dropped)) > 0)
+		n += got;
+	qsort(ev, n, sizeof(ev[0]), cmp_line_event);
+	for (i = 0; i < n; i++) {
+		int64_t start = line_event_start(&ev[i]);
+		unsigned int dir = ev[i].dir == TS7800_SIM_LOG_RX;
 
-			if (ev[i].dir == TS7800_SIM_LOG_TX && (ev[i].word & TS7800_SIM_WORD_BIT9)) {
-				ls->requests++;
-				ls->char_ns = ev[i].char_ns;
-				if (ls->prev_end >= 0 && ls->rx_since_req && ls->ngaps < LINE_SAMPLES)
-					ls->gap_ns[ls->ngaps++] = start - ls->prev_end;
-				else if (ls->prev_end >= 0 && ls->nsilent < LINE_SAMPLES)
-					ls->silent_ns[ls->nsilent++] = start - ls->prev_end;
-				ls->rx_since_req = 0;
-			} else if (ev[i].dir == TS7800_SIM_LOG_RX) {
-				if (!ls->rx_since_req && ls->requests && ls->nresp < LINE_SAMPLES)
-					ls->resp_ns[ls->nresp++] = start - ls->prev_end;
-				ls->rx_since_req = 1;
-			}
-			ls->prev_end = ev[i].end_ns;
+		if (start < ls->dir_end[!dir])
+			ls->overlaps++;
+		if ((int64_t)ev[i].end_ns > ls->dir_end[dir])
+			ls->dir_end[dir] = ev[i].end_ns;
+		if (ev[i].dir == TS7800_SIM_LOG_TX && (ev[i].word & TS7800_SIM_WORD_BIT9)) {
+			ls->requests++;
+			ls->char_ns = ev[i].char_ns;
+			if (ls->prev_end >= 0 && ls->rx_since_req && ls->ngaps < LINE_SAMPLES)
+				ls->gap_ns[ls->ngaps++] = start - ls->prev_end;
+			else if (ls->prev_end >= 0 && ls->nsilent < LINE_SAMPLES)
+				ls->silent_ns[ls->nsilent++] = start - ls->prev_end;
+			ls->rx_since_req = 0;
+		} else if (ev[i].dir == TS7800_SIM_LOG_RX) {
+			if (!ls->rx_since_req && ls->requests && ls->nresp < LINE_SAMPLES)
+				ls->resp_ns[ls->nresp++] = start - ls->prev_end;
+			ls->rx_since_req = 1;
 		}
-		if (n < 256)
-			break;
+		if ((int64_t)ev[i].end_ns > ls->prev_end)
+			ls->prev_end = ev[i].end_ns;
 	}
 }
 
