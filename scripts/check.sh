@@ -161,7 +161,8 @@ host_checks() {
 		stage "userland cross build + install manifest ($a)" nice -n 10 "$TOP/scripts/cross-check.sh" "$a"
 		stage_row "userland cross build + install manifest ($a)" $?
 	done
-	# dkms add/build/install in a private tree, then the VM loads its modules.
+}
+dkms_check() {	# dkms add/build/install in a private tree, then a VM loads its modules
 	stage "DKMS packaging (scripts/dkms-check.sh)" "$TOP/scripts/dkms-check.sh"
 	stage_row "DKMS packaging: dkms add/build/install, modules load in the VM" $?
 }
@@ -199,22 +200,24 @@ selected)
 	done
 	;;
 full)
-	# Three tracks side by side. A TCG guest waits on timers most of the
+	# Four tracks side by side. A TCG guest waits on timers most of the
 	# time (an x86_64 guest kept 0.6 of a core busy over its 30 minutes), so
-	# two guests run at once, each with the 2 vCPUs, next to the host's
-	# builds (CPU-bound, at a lower priority):
+	# up to three guests (each with 2 vCPUs) run next to the host's builds
+	# (CPU-bound, at a lower priority):
 	#   vm      the x86_64 guest of the kernel suites (and of the suites
-	#           without x86_lane=user), then the debug lane (its kernel is
-	#           built in the background meanwhile);
+	#           without x86_lane=user), then the armhf lane;
 	#   vmuser  the x86_64 guest of the user-space suites (x86_lane=user in
-	#           their settings), then the armhf lane;
-	#   host    the unit tests, the browser check, the ARM cross builds, DKMS.
+	#           their settings), then DKMS (its own guest);
+	#   debug   the debug lane, as soon as its kernel is there (a cold build
+	#           runs in the background from the start; vm-debug.sh waits);
+	#   host    the unit tests, the browser check, the ARM cross builds.
 	mapfile -t kernel_sel < <(suite_args other)
 	mapfile -t user_sel < <(suite_args user)
-	vm_track() { x86_lane x86_64 "${kernel_sel[@]}"; debug_lane; }
-	vmuser_track() { x86_lane x86_64-user "${user_sel[@]}"; armhf_lane; }
+	vm_track() { x86_lane x86_64 "${kernel_sel[@]}"; armhf_lane; }
+	vmuser_track() { x86_lane x86_64-user "${user_sel[@]}"; dkms_check; }
 	track vm vm_track
 	track vmuser vmuser_track
+	track debug debug_lane
 	track host host_checks
 	wait_tracks
 	;;
