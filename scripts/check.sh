@@ -11,8 +11,8 @@
 #   the debug-kernel VM lane (KASAN, lockdep, kmemleak, UBSAN: the kernel
 #   suites; its kernel is built once and cached, see scripts/debug-kernel.sh,
 #   in the background while the other stages run) and the armhf VM lane.
-# --fast (make check-fast): gates, unit tests and the kernel suites on the
-# x86_64 lane only.
+# --fast (make check-fast): gates, then side by side the unit tests and the
+# kernel suites in two x86_64 guests.
 # Every stage runs even if an earlier one failed. Before the summary: the
 # time of every stage and VM suite (also in build/results/time.tsv), then
 # the failures and skips; a skip not listed in tests/expected-skips fails the
@@ -185,9 +185,17 @@ stage_row "test programs (x86_64)" $?
 
 case $mode in
 fast)
-	stage "unit tests (ASan/UBSan)" "$TOP/scripts/unit.sh"
-	mapfile -t sel < <(for s in $(kernel_suites); do printf -- '--test\n%s\n' "$s"; done)
-	x86_lane x86_64 "${sel[@]}"
+	# The unit tests and the kernel suites in two x86_64 guests (the suites
+	# dealt out in turn), side by side.
+	mapfile -t sel1 < <(kernel_suites | awk 'NR % 2 == 1 { print "--test"; print }')
+	mapfile -t sel2 < <(kernel_suites | awk 'NR % 2 == 0 { print "--test"; print }')
+	unit_track() { stage "unit tests (ASan/UBSan)" nice -n 10 "$TOP/scripts/unit.sh"; }
+	vm1_track() { x86_lane x86_64 "${sel1[@]}"; }
+	vm2_track() { x86_lane x86_64-2 "${sel2[@]}"; }
+	track unit unit_track
+	track vm vm1_track
+	track vm2 vm2_track
+	wait_tracks
 	;;
 selected)
 	for lane in $lanes; do
@@ -231,7 +239,7 @@ done >"$RESULTS/all.tsv"
 "$TOP/scripts/skip-policy.sh" "$RESULTS/all.tsv" >"$RESULTS/skip-policy.tsv"
 cat "$RESULTS/skip-policy.tsv" >>"$RESULTS/all.tsv"
 # VM time per suite and lane (the 7th column of the lanes' rows).
-for lane in x86_64 x86_64-user armhf debug; do
+for lane in x86_64 x86_64-2 x86_64-user armhf debug; do
 	[ -s "$RESULTS/$lane.tsv" ] || continue
 	awk -F'\t' -v lane="$lane" '$7 != "" {
 			s = $1; sub(/^[^:]*: /, "", s); sub(/\/.*/, "", s); t[s] += $7
