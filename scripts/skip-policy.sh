@@ -17,7 +17,10 @@ while IFS=$'\t' read -r pat why; do
 	patterns+=("$pat")
 done <"$list"
 
-while IFS=$'\t' read -r name _pass _fail skip _verdict reason _; do
+# Tab is white space to read(1): empty fields (a skip without a reason)
+# would collapse and shift the columns, so they are split on \x1f instead.
+while IFS= read -r row; do
+	IFS=$'\x1f' read -r name _pass _fail skip _verdict reason _ <<<"${row//$'\t'/$'\x1f'}"
 	[ "${skip:-0}" -gt 0 ] 2>/dev/null || continue
 	listed=0
 	for pat in "${patterns[@]}"; do

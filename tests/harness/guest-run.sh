@@ -279,6 +279,8 @@ EOF
 		verdict=ok
 	fi
 	[ "$fail" -gt 0 ] && verdict=fail
+	# A skip's reason is the program's own (its "# SKIP why").
+	[ "$verdict" = skip ] && [ -z "$reason" ] && reason=$skipwhy
 	n=$((n + 1))
 	case $verdict in
 	ok) tap "ok $n $name # ${secs}s" ;;
