@@ -165,6 +165,7 @@ int rs485_line_setup(struct rs485_bus *bus);
 void rs485_line_restore(struct rs485_bus *bus);
 int rs485_line_set_config(struct rs485_bus *bus, const struct n_rs485_config *cfg);
 u64 rs485_char_ns(const struct rs485_bus *bus);
+void rs485_line_wait(struct rs485_bus *bus);
 int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len);
 
 /* rs485-xact.c */

@@ -236,29 +236,21 @@ static int rs485_echo_check(struct rs485_bus *bus)
 }
 
 /*
- * Send one frame (ADDR ... CRC) and return when its last character has left
- * the UART (and, in echo mode, its echo has come back): 0, -ECOMM (echo
- * mode: collision) or another negative error (detach, hangup, stuck
- * transmitter).
+ * Wait until the line may carry the next request: the gap after the last
+ * frame on the line, whichever direction, and after what a frame in
+ * progress or a broken one may still send (rs485-rx.c). Characters that
+ * arrive meanwhile move it on, and a frame's end comes closer once its LEN
+ * has arrived: look again at least every gap. A cut response wakes the
+ * worker from inside receive_buf, before that call has counted what may
+ * still come: let it finish first. Returns early if the bus goes away.
  */
-int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
+void rs485_line_wait(struct rs485_bus *bus)
 {
 	u64 gap_ns = bus->cfg.gap_chars * rs485_char_ns(bus);
-	bool echo = bus->cfg.flags & N_RS485_CFG_ECHO;
 	struct tty_port *port = bus->tty->port;
 	ktime_t busy, start, now;
 	unsigned long flags;
-	int ret, echo_ret;
 
-	/*
-	 * The gap after the last frame on the line, whichever direction, and
-	 * after what a frame in progress or a broken one may still send
-	 * (rs485-rx.c). Characters that arrive meanwhile move it on, and a
-	 * frame's end comes closer once its LEN has arrived: look again at
-	 * least every gap. A cut response wakes the worker from inside
-	 * receive_buf, before that call has counted what may still come: let
-	 * it finish first.
-	 */
 	if (port)
 		flush_work(&port->buf.work);
 	for (;;) {
@@ -272,9 +264,25 @@ int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 			start = bus->line_free;
 		now = ktime_get();
 		if (!ktime_before(now, start) || READ_ONCE(bus->dead))
-			break;
+			return;
 		rs485_sleep_until(bus, min_t(ktime_t, start, ktime_add_ns(now, gap_ns)));
 	}
+}
+
+/*
+ * Send one frame (ADDR ... CRC), right after rs485_line_wait(), and return
+ * when its last character has left the UART (and, in echo mode, its echo
+ * has come back): 0, -ECOMM (echo mode: collision) or another negative
+ * error (detach, hangup, stuck transmitter).
+ */
+int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
+{
+	u64 gap_ns = bus->cfg.gap_chars * rs485_char_ns(bus);
+	bool echo = bus->cfg.flags & N_RS485_CFG_ECHO;
+	struct tty_port *port = bus->tty->port;
+	unsigned long flags;
+	int ret, echo_ret;
+
 	if (echo)
 		rs485_echo_expect(bus, buf, len);
 	rs485_rx_lenient(bus, true);

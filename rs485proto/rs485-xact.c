@@ -158,7 +158,11 @@ static bool rs485_resp_final(struct rs485_bus *bus)
 	return final;
 }
 
-/* Wait for the response to the request just sent; returns the final state. */
+/*
+ * Wait for the response to the request just sent; returns the final state.
+ * The state stays as it is: until the next attempt goes out, the response
+ * may still come whole (rs485_run()).
+ */
 static enum rs485_resp_state rs485_await(struct rs485_bus *bus, struct rs485_req *req)
 {
 	ktime_t tmo = ns_to_ktime((u64)req->timeout_us * NSEC_PER_USEC);
@@ -178,7 +182,6 @@ static enum rs485_resp_state rs485_await(struct rs485_bus *bus, struct rs485_req
 			extended = true;
 			continue;
 		}
-		bus->resp_state = RS485_RESP_NONE;
 		spin_unlock_irqrestore(&bus->lock, flags);
 		return state;
 	}
@@ -217,23 +220,37 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 		enum rs485_resp_state state;
 		size_t len;
 
-		if (attempt) {
-			spin_lock_irqsave(&bus->lock, flags);
-			bus->stats.retries++;
-			if (req->abandoned || bus->dead) {
-				spin_unlock_irqrestore(&bus->lock, flags);
-				req->status = N_RS485_ERROR;
-				return;
-			}
-			spin_unlock_irqrestore(&bus->lock, flags);
+		if (attempt && (READ_ONCE(req->abandoned) || READ_ONCE(bus->dead))) {
+			req->status = N_RS485_ERROR;
+			return;
 		}
-		len = rs485_req_encode(req, resend, buf);
+		rs485_line_wait(bus);
 
+		/*
+		 * Until this request goes out, the last attempt still owns
+		 * what arrives (rs485_rx_frame_for_xact()): its response may
+		 * have come whole after all, after the cut frame of the node
+		 * that made it "corrupt" (an event hit by an overrun) or after
+		 * the timeout. Then it is the answer, and a retry would only
+		 * bring a second one, for read() or the next transaction. If
+		 * it has started since, the node has executed: RESEND. A frame
+		 * that begins from here on belongs to the new attempt.
+		 */
 		spin_lock_irqsave(&bus->lock, flags);
+		if (bus->resp_state == RS485_RESP_GOOD) {
+			spin_unlock_irqrestore(&bus->lock, flags);
+			req->status = rs485_resp_status(&req->resp);
+			return;
+		}
+		if (bus->resp_state == RS485_RESP_STARTED || bus->resp_state == RS485_RESP_CORRUPT)
+			resend = true;
 		bus->resp_state = req->expect_resp ? RS485_RESP_WAIT : RS485_RESP_NONE;
 		bus->attempt++;
+		if (attempt)
+			bus->stats.retries++;
 		spin_unlock_irqrestore(&bus->lock, flags);
 
+		len = rs485_req_encode(req, resend, buf);
 		req->attempts++;
 		ret = rs485_tx_frame(bus, buf, len);
 		if (ret) {
@@ -274,9 +291,8 @@ static void rs485_run(struct rs485_bus *bus, struct rs485_req *req, u8 *buf)
 			 * its response failed the CRC, was cut short (address
 			 * character, overrun, framing error, break) or stopped.
 			 * Ask for the answer again, in this and every later
-			 * retry of the request.
+			 * retry of the request (set there).
 			 */
-			resend = true;
 			req->status = N_RS485_BADCRC;
 			break;
 		default:
@@ -316,6 +332,7 @@ void rs485_xact_work(struct work_struct *work)
 
 		spin_lock_irqsave(&bus->lock, flags);
 		bus->cur = NULL;
+		bus->resp_state = RS485_RESP_NONE;
 		if (!req->abandoned && req->is_xfer) {
 			if (req->status == N_RS485_OK)
 				bus->stats.xfers_ok++;
@@ -368,7 +385,8 @@ bool rs485_rx_frame_for_xact(struct rs485_bus *bus, const u8 *frame, unsigned in
 	spin_lock_irqsave(&bus->lock, flags);
 	bus->stats.rx_frames++;
 	req = bus->cur;
-	if (req && (bus->resp_state == RS485_RESP_WAIT || bus->resp_state == RS485_RESP_STARTED) &&
+	/* Also between attempts (CORRUPT, or WAIT after a timeout): rs485_run(). */
+	if (req && bus->resp_state != RS485_RESP_NONE && bus->resp_state != RS485_RESP_GOOD &&
 	    !(frame[2] & N_RS485_RESP_EVENT) &&
 	    frame[0] == req->frame.addr && frame[1] == req->frame.instr) {
 		memcpy(&req->resp, frame, len);
