@@ -15,6 +15,9 @@
  * least 2 idle characters and overlaps no received character (line log of
  * the wire): also when the rest of an overrun response is still on the line
  * (the long answer of I_CUT_OVERRUN).
+ * An overrun that cuts an event frame of the node while its whole answer
+ * follows in the same FIFO (I_EVENT_OVERRUN): the answer is taken, nothing
+ * is sent again, and no response goes to read(), here or in any case above.
  */
 #include "rs485-lib.h"
 
@@ -22,6 +25,48 @@
 #define LONG_US		300000
 
 static struct line_scan ls;
+
+/*
+ * The overrun cuts an event frame of the node during the transaction, and
+ * its whole answer follows (as in the concurrency test under load): the
+ * cut frame made the transaction "corrupt", but the answer that came whole
+ * is its answer. No RESEND, no response in read(), and the next
+ * transaction (while the second event's cut frame is still open) gets its
+ * own answer in one attempt.
+ */
+static void event_overrun_case(int fd, struct slave *s)
+{
+	unsigned int e0 = s->executions[I_EVENT_OVERRUN], r0 = s->resends, responses;
+	uint8_t data[5] = { 1, 2, 3, 4, 5 };
+	struct n_rs485_stats st0, st1;
+	struct n_rs485_xfer x, y;
+	int ret, ret2;
+
+	if (get_stats(fd, &st0))
+		tap_bail("N_RS485_IOC_GET_STATS");
+	ret = xfer(fd, &x, SLAVE_ADDR, I_EVENT_OVERRUN, 0, NULL, 0, LONG_US, 2);
+	if (get_stats(fd, &st1))
+		tap_bail("N_RS485_IOC_GET_STATS");
+	ret2 = xfer(fd, &y, SLAVE_ADDR, I_ECHO, 0, data, sizeof(data), LONG_US, 2);
+	line_scan_read(&ls);
+	read_queue_drain(fd, &responses);
+	tap_diag("event cut by an overrun: overruns +%llu, truncated +%llu, noise +%llu",
+		 (unsigned long long)(st1.rx_overruns - st0.rx_overruns),
+		 (unsigned long long)(st1.rx_truncated - st0.rx_truncated),
+		 (unsigned long long)(st1.rx_noise - st0.rx_noise));
+	tap_ok(ret == 0 && x.status == N_RS485_OK && x.resp.flags == N_RS485_RESP_ACK &&
+	       x.resp.len == 0 && st1.rx_overruns > st0.rx_overruns &&
+	       st1.rx_truncated > st0.rx_truncated && x.attempts == 1 &&
+	       s->executions[I_EVENT_OVERRUN] - e0 == 1 && s->resends == r0,
+	       "an overrun cuts an event frame of the node, its answer follows whole: taken "
+	       "(status %u, attempts %u, executed %u time(s), %u RESEND(s))", x.status,
+	       x.attempts, s->executions[I_EVENT_OVERRUN] - e0, s->resends - r0);
+	tap_ok(ret2 == 0 && y.status == N_RS485_OK && y.attempts == 1 &&
+	       y.resp.len == sizeof(data) && !memcmp(y.resp.data, data, sizeof(data)),
+	       "...the next transaction gets its own answer (status %u, attempts %u)",
+	       y.status, y.attempts);
+	tap_ok(responses == 0, "...and no response went to read() (%u)", responses);
+}
 
 /* One cut-short case: status, attempts, executions and RESENDs as expected. */
 static void cut_case(int fd, struct slave *s, uint8_t instr, const char *how, uint32_t retries,
@@ -68,7 +113,7 @@ int main(void)
 	int fd, wfd;
 	int64_t min;
 
-	tap_plan(17);
+	tap_plan(21);
 	fd = bus_logged_setup(PORT, &s, &wfd);
 	line_scan_start(&ls, wfd);
 
@@ -76,7 +121,8 @@ int main(void)
 	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 0, N_RS485_OK, 2);
 	cut_case(fd, &s, I_CUT_BREAK, "a break", 2, 0, N_RS485_OK, 2);
 	cut_case(fd, &s, I_CUT_OVERRUN, "an RX FIFO overrun", 2, 0, N_RS485_OK, 2);
-	tap_ok(s.overrun_missed == 0, "the overrun happened (UART reported it in time: %u missed)",
+	event_overrun_case(fd, &s);
+	tap_ok(s.overrun_missed == 0, "the overruns happened (UART reported them in time: %u missed)",
 	       s.overrun_missed);
 	/* sticky RESEND: cut, the RESEND times out, the next retry is a RESEND again */
 	cut_case(fd, &s, I_CUT_ADDR, "an address character", 2, 1, N_RS485_OK, 3);
@@ -114,6 +160,12 @@ int main(void)
 	       (unsigned long long)st.xfers, (unsigned long long)st.rx_truncated,
 	       (unsigned long long)st.rx_overruns, (unsigned long long)st.rx_framing);
 	tap_ok(s.bad_frames == 0, "no malformed frame on the wire (%u)", s.bad_frames);
+	{
+		unsigned int responses, frames = read_queue_drain(fd, &responses);
+
+		tap_ok(responses == 0, "no response of any case went to read() (%u of %u frames)",
+		       responses, frames);
+	}
 	bus_logged_teardown(fd, wfd, &s);
 	return tap_finish();
 }

@@ -63,7 +63,21 @@ enum {
 	 * own and no answer; the others answer ACK.
 	 */
 	I_EVENT_SILENT = 0x10,
+	/*
+	 * ACK without data, sent while the simulated CPU does not serve
+	 * interrupts between an EVENT frame of the node and a second one:
+	 * the RX FIFO (16 characters) holds the first event, the whole answer
+	 * and the second event's first 2 characters, the rest overruns, and
+	 * the UART reports the overrun with the first event's address
+	 * character (the oldest in the FIFO). The slave answers
+	 * EVENT_OVERRUN_DELAY_US after the request: the master's drain after
+	 * its request serves the port (tx_empty() reads the RX FIFO), which
+	 * must be over before the burst, else it takes characters of it.
+	 */
+	I_EVENT_OVERRUN = 0x11,
 };
+
+#define EVENT_OVERRUN_DELAY_US	50000
 
 #define CUT_DATA	4	/* data bytes of the whole answer of I_CUT_* */
 #define CUT_SENT	6	/* characters of it sent before the cut */
@@ -204,8 +218,8 @@ static inline void slave_send_cut(struct slave *s, const uint8_t *f, uint16_t en
 	pthread_mutex_unlock(&s->send_lock);
 }
 
-/* Send @f (n bytes) while the CPU ignores interrupts, until the RX FIFO overruns. */
-static inline void slave_send_overrun(struct slave *s, const uint8_t *f, size_t n)
+/* Send @n words while the CPU ignores interrupts, until the RX FIFO overruns. */
+static inline void slave_send_words_overrun(struct slave *s, const uint16_t *w, size_t n)
 {
 	struct ts7800_sim_wire_stats st;
 	uint64_t before;
@@ -214,7 +228,9 @@ static inline void slave_send_overrun(struct slave *s, const uint8_t *f, size_t 
 	wire_stats(s->wfd, &st);
 	before = st.rx_overruns;
 	debugfs_write(-1, "irq_hold", 1);
-	slave_send(s, f, n, 0);
+	pthread_mutex_lock(&s->send_lock);
+	wire_write_all(s->wfd, w, n);
+	pthread_mutex_unlock(&s->send_lock);
 	end = now_s() + 2;
 	do {
 		usleep(1000);
@@ -223,6 +239,27 @@ static inline void slave_send_overrun(struct slave *s, const uint8_t *f, size_t 
 	debugfs_write(-1, "irq_hold", 0);
 	if (st.rx_overruns == before)
 		s->overrun_missed++;
+}
+
+/* Send @f (n bytes) while the CPU ignores interrupts, until the RX FIFO overruns. */
+static inline void slave_send_overrun(struct slave *s, const uint8_t *f, size_t n)
+{
+	uint16_t w[N_RS485_MAX_FRAME + 1];
+
+	slave_send_words_overrun(s, w, frame_words(f, n, 0, w));
+}
+
+/* I_EVENT_OVERRUN: event, the answer @f (n bytes), event, while the FIFO overruns. */
+static inline void slave_send_event_overrun(struct slave *s, const uint8_t *f, size_t n)
+{
+	uint16_t w[2 * 9 + N_RS485_MAX_FRAME + 1];
+	uint8_t ev[8];
+	size_t k;
+
+	k = frame_words(ev, event_frame(s->events_sent++, ev), 0, w);
+	k += frame_words(f, n, 0, w + k);
+	k += frame_words(ev, event_frame(s->events_sent++, ev), 0, w + k);
+	slave_send_words_overrun(s, w, k);
 }
 
 static inline void slave_answer(struct slave *s, const uint8_t *req)
@@ -306,6 +343,8 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		len = OVERRUN_DATA;
 		memset(r + 4, instr, len);
 		break;
+	case I_EVENT_OVERRUN:
+		break;		/* ACK, no data */
 	case I_EVENT_SILENT:
 		if (s->executions[instr] % 2) {
 			slave_send(s, ev, event_frame(s->executions[instr], ev), 0);
@@ -340,6 +379,10 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		break;
 	case I_CUT_OVERRUN:
 		slave_send_overrun(s, r, 4 + len);
+		break;
+	case I_EVENT_OVERRUN:
+		usleep(EVENT_OVERRUN_DELAY_US);
+		slave_send_event_overrun(s, r, 4 + len);
 		break;
 	default:
 		slave_send(s, r, 4 + len, xor);
@@ -496,6 +539,26 @@ static inline void event_reader_stop(struct event_reader *r)
 {
 	r->stop = 1;
 	pthread_join(r->thread, NULL);
+}
+
+/*
+ * Take every frame that waits for read() now; returns how many, *responses
+ * of them without the EVENT flag (responses, which must never go there).
+ */
+static inline unsigned int read_queue_drain(int fd, unsigned int *responses)
+{
+	struct pollfd p = { .fd = fd, .events = POLLIN };
+	uint8_t buf[N_RS485_MAX_FRAME];
+	unsigned int n = 0;
+
+	*responses = 0;
+	while (poll(&p, 1, 0) > 0 && (p.revents & POLLIN) &&
+	       read(fd, buf, sizeof(buf)) >= N_RS485_HEADER_LEN) {
+		n++;
+		if (!(buf[2] & N_RS485_RESP_EVENT))
+			(*responses)++;
+	}
+	return n;
 }
 
 /*
