@@ -739,7 +739,11 @@ static struct platform_driver sim_driver = {
 	.probe	= sim_probe,
 	.driver	= {
 		.name = SIM_DRV_NAME,
-		.suppress_bind_attrs = true,
+		/*
+		 * Bind attributes kept: tscan1/unbind-bus unbinds the bus
+		 * provider as an FPGA core unbind would; everything the probe
+		 * sets up is devres.
+		 */
 	},
 };
 
