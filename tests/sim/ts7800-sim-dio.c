@@ -14,8 +14,12 @@
  *   ext_low    bit n-1 set: an outside device holds header pin n low
  *   pause      1: the PAUSE signal is asserted (its pin pulled low)
  *   fan_fail   1: pull the FAN_FAIL pin low as a failing fan board would
+ *   in_hold    write N (1..5000): the next read of the input register is held
+ *              until 0 is written or N ms have passed; read: enum sim_dio_hold
+ *              (0 off, 1 armed, 2 holding a read, 3 the last hold expired)
  */
 #include <linux/debugfs.h>
+#include <linux/ktime.h>
 #include <linux/module.h>
 
 #include "ts7800-sim.h"
@@ -117,6 +121,35 @@ u16 sim_dio_read_in(struct ts7800_sim *sim)
 	return sim_dio_levels(&sim->dio);
 }
 
+/*
+ * A test holds one read of the input register to hold the DIO driver's
+ * edge poll in the middle of its work while it unbinds the driver (the
+ * teardown order of the poll and the gpiochip, dio-i2c/unbind-poll). The
+ * regmap calls this with its spinlock held, interrupts off: a busy wait,
+ * bounded by hold_ms; the levels are sampled after it, so a change made
+ * while the read is held is what the read returns.
+ */
+#define SIM_DIO_HOLD_MAX_MS	5000
+
+void sim_dio_hold_read(struct ts7800_sim *sim)
+{
+	struct sim_dio *dio = &sim->dio;
+	ktime_t end;
+
+	if (atomic_cmpxchg(&dio->hold, SIM_DIO_HOLD_ARMED,
+			   SIM_DIO_HOLD_HOLDING) != SIM_DIO_HOLD_ARMED)
+		return;
+	end = ktime_add_ms(ktime_get(), READ_ONCE(dio->hold_ms));
+	while (atomic_read(&dio->hold) == SIM_DIO_HOLD_HOLDING) {
+		if (ktime_after(ktime_get(), end)) {
+			atomic_cmpxchg(&dio->hold, SIM_DIO_HOLD_HOLDING,
+				       SIM_DIO_HOLD_EXPIRED);
+			break;
+		}
+		cpu_relax();
+	}
+}
+
 void sim_dio_write_out(struct ts7800_sim *sim, u16 val)
 {
 	sim->dio.out = val;
@@ -213,6 +246,33 @@ static int fan_fail_set(void *data, u64 val)
 }
 DEFINE_DEBUGFS_ATTRIBUTE(fan_fail_fops, fan_fail_get, fan_fail_set, "%llu\n");
 
+static int in_hold_get(void *data, u64 *val)
+{
+	struct ts7800_sim *sim = data;
+
+	*val = atomic_read(&sim->dio.hold);
+	return 0;
+}
+
+/* 0 releases a held read (or disarms); N arms the next read for N ms. */
+static int in_hold_set(void *data, u64 val)
+{
+	struct ts7800_sim *sim = data;
+
+	if (val > SIM_DIO_HOLD_MAX_MS)
+		return -EINVAL;
+	if (!val) {
+		atomic_set(&sim->dio.hold, SIM_DIO_HOLD_OFF);
+		return 0;
+	}
+	if (atomic_read(&sim->dio.hold) == SIM_DIO_HOLD_HOLDING)
+		return -EBUSY;
+	WRITE_ONCE(sim->dio.hold_ms, val);
+	atomic_set(&sim->dio.hold, SIM_DIO_HOLD_ARMED);
+	return 0;
+}
+DEFINE_DEBUGFS_ATTRIBUTE(in_hold_fops, in_hold_get, in_hold_set, "%llu\n");
+
 void sim_dio_debugfs_init(struct ts7800_sim *sim)
 {
 	struct dentry *dir = debugfs_create_dir("dio", sim->debugfs);
@@ -221,6 +281,7 @@ void sim_dio_debugfs_init(struct ts7800_sim *sim)
 	debugfs_create_file_unsafe("ext_low", 0600, dir, sim, &ext_low_fops);
 	debugfs_create_file_unsafe("pause", 0600, dir, sim, &pause_fops);
 	debugfs_create_file_unsafe("fan_fail", 0600, dir, sim, &fan_fail_fops);
+	debugfs_create_file_unsafe("in_hold", 0600, dir, sim, &in_hold_fops);
 	debugfs_create_u32("scl_pin", 0400, dir, &sim->dio.scl);
 	debugfs_create_u32("sda_pin", 0400, dir, &sim->dio.sda);
 	debugfs_create_u32("pause_pin", 0400, dir, &sim->dio.pause);

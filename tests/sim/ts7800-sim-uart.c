@@ -418,6 +418,8 @@ int sim_reg_read(void *context, unsigned int reg, unsigned int *val)
 	struct sim_uart *u;
 	unsigned long flags;
 
+	if (reg == TS7800_DIO_IN)
+		sim_dio_hold_read(sim);	/* outside the model lock */
 	spin_lock_irqsave(&sim->lock, flags);
 	switch (reg) {
 	case TS7800_FPGA_ID_LO:

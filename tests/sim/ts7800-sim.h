@@ -13,6 +13,7 @@
 #ifndef TS7800_SIM_H
 #define TS7800_SIM_H
 
+#include <linux/atomic.h>
 #include <linux/hrtimer.h>
 #include <linux/irq_work.h>
 #include <linux/kfifo.h>
@@ -117,6 +118,16 @@ struct sim_dio {
 	unsigned int scl, sda;	/* header pins of the I2C bus */
 	unsigned int fan_fail;	/* header pin of the FAN_FAIL output */
 	unsigned int pause;	/* header pin of the robot's PAUSE signal */
+	atomic_t hold;		/* enum sim_dio_hold: debugfs "in_hold" */
+	unsigned int hold_ms;	/* longest hold of an armed read */
+};
+
+/* A held read of the DIO input register (debugfs "in_hold"). */
+enum sim_dio_hold {
+	SIM_DIO_HOLD_OFF,	/* reads return at once */
+	SIM_DIO_HOLD_ARMED,	/* the next read will be held */
+	SIM_DIO_HOLD_HOLDING,	/* a read is being held */
+	SIM_DIO_HOLD_EXPIRED,	/* the last held read ended by its time limit */
 };
 
 /* Bit-level I2C slave (ts7800-sim-i2c.c). */
@@ -215,6 +226,7 @@ void sim_wire_unregister(struct sim_uart *u);
 /* ts7800-sim-dio.c (all with sim->lock held, except the debugfs setup) */
 int sim_dio_init(struct ts7800_sim *sim);
 u16 sim_dio_read_in(struct ts7800_sim *sim);
+void sim_dio_hold_read(struct ts7800_sim *sim);
 void sim_dio_write_out(struct ts7800_sim *sim, u16 val);
 void sim_dio_update(struct ts7800_sim *sim);
 void sim_dio_debugfs_init(struct ts7800_sim *sim);
