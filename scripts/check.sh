@@ -118,15 +118,6 @@ x86_lane() {	# x86_lane LANE [--test SUITE]...: one x86_64 guest
 	[ -s "$BUILD/kmod/x86_64/modules.list" ] || "$TOP/scripts/build-kmod.sh" x86_64
 	stage "$lane VM lane" "$TOP/tests/harness/vm-x86.sh" --lane "$lane" "$@"
 }
-# suite_args user|other: --test for each suite whose settings say
-# x86_lane=user (the user-space stack above our drivers), or for the others.
-suite_args() {
-	local settings want=$1 user
-	for settings in "$TOP"/tests/vm/*/settings; do
-		grep -qx 'x86_lane=user' "$settings" && user=user || user=other
-		[ "$user" = "$want" ] && printf -- '--test\n%s\n' "$(basename "$(dirname "$settings")")"
-	done
-}
 armhf_lane() {
 	[ -s "$BUILD/kmod/armhf/modules.list" ] || "$TOP/scripts/build-kmod.sh" armhf
 	stage "test programs (armhf)" "$TOP/scripts/build-testprogs.sh" armhf
@@ -220,8 +211,8 @@ full)
 	#   debug   the debug lane, as soon as its kernel is there (a cold build
 	#           runs in the background from the start; vm-debug.sh waits);
 	#   host    the unit tests, the browser check, the armhf cross build.
-	mapfile -t kernel_sel < <(suite_args other)
-	mapfile -t user_sel < <(suite_args user)
+	mapfile -t kernel_sel < <(x86_suites other | awk '{ print "--test"; print }')
+	mapfile -t user_sel < <(x86_suites user | awk '{ print "--test"; print }')
 	vm_track() { x86_lane x86_64 "${kernel_sel[@]}"; armhf_lane; cross_check armel; }
 	vmuser_track() { x86_lane x86_64-user "${user_sel[@]}"; dkms_check; }
 	track vm vm_track
