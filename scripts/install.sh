@@ -119,7 +119,9 @@ done
 for f in "$TOP"/systemd/*.service; do
 	inst 0644 "$f" "/usr/lib/systemd/system/${f##*/}"
 done
-inst 0644 "$TOP/systemd/80-advee-can0.network" /usr/lib/systemd/network/80-advee-can0.network
+for f in "$TOP"/systemd/*.network; do
+	inst 0644 "$f" "/usr/lib/systemd/network/${f##*/}"
+done
 inst 0644 "$TOP/systemd/advee.conf" /usr/lib/sysusers.d/advee.conf
 inst 0644 "$TOP/systemd/modules-load.conf" /usr/lib/modules-load.d/advee.conf
 inst 0644 "$TOP/i2c-max6615/advee-max6615.conf" /etc/sensors.d/advee-max6615.conf

@@ -20,6 +20,7 @@
 #include "advee/module/periodic.hpp"
 #include "advee/module/signals.hpp"
 #include "advee/module/time.hpp"
+#include "advee/msgs/bus.hpp"
 #include "advee/msgs/channels.hpp"
 #include "advee/robotsim/world.hpp"
 #include "lowlevel/cmd_homing_t.hpp"
@@ -103,11 +104,14 @@ int run(const Options& o) {
   const advee::demo::MotionScript script(advee::robotsim::load_path(o.path_file));
   // Signals first: LCM's threads inherit the blocked mask.
   advee::module::SignalFd signals({SIGINT, SIGTERM});
-  lcm::LCM lcm;
-  if (!lcm.good()) {
-    std::cerr << "advee-drive-script: LCM did not start (multicast route? see docs/modules.md)\n";
+  std::unique_ptr<lcm::LCM> bus;
+  try {
+    bus = advee::msgs::open_bus(advee::msgs::bus_url(""));
+  } catch (const advee::msgs::BusUnavailable& e) {
+    std::cerr << "advee-drive-script: " << e.what() << "\n";
     return 1;
   }
+  lcm::LCM& lcm = *bus;
   Publisher pub(lcm);
   const auto period = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(1 / o.rate_hz));
   advee::module::PeriodicTimer timer(period);
@@ -191,7 +195,7 @@ int main(int argc, char** argv) {
       "into EPOS velocity and IclA steering, and the virtual robot (robot-sim) moves as its simulated drives "
       "turn. After the path it sends standstill commands for --hold seconds (or until SIGINT/SIGTERM with "
       "--stay); SIGINT/SIGTERM send one standstill command and end it at once. The LCM URL comes from "
-      "LCM_DEFAULT_URL (docs/modules.md).\n\n"
+      "LCM_DEFAULT_URL, else /etc/advee/lcm.conf (docs/modules.md).\n\n"
       "Path file (robotsim's format, docs/robotsim.md):\n"
       "  path:\n"
       "    - {speed_mps: 0.5, steering_deg: 0, duration_s: 8}\n"

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "advee/module/signals.hpp"
+#include "advee/msgs/bus.hpp"
 #include "advee/msgs/channels.hpp"
 #include "advee/msgs/describe.hpp"
 
@@ -36,7 +37,7 @@ int main(int argc, char** argv) {
       "advee-stack-listen: prints every message of the low level's LCM channels for a while, one decoded line "
       "each: `CHANNEL t=MONOTONIC_SECONDS module=SENDER key=value ...` (the whole-stack VM tests count and "
       "compare them). Without CHANNEL arguments: every channel of advee/msgs/channels.hpp and SIM_DATA_POSE "
-      "(robot-sim's ground truth). The LCM URL comes from LCM_DEFAULT_URL.\n\n"
+      "(robot-sim's ground truth). The LCM URL comes from LCM_DEFAULT_URL, else /etc/advee/lcm.conf.\n\n"
       "Exit status: 0, 1 when LCM does not start, 2 on bad arguments.",
       "advee-stack-listen"};
   app.add_option("-s,--seconds", seconds, "how long to listen")->check(CLI::Range(0.1, 86400.0))->capture_default_str();
@@ -53,11 +54,14 @@ int main(int argc, char** argv) {
   }
   try {
     advee::module::SignalFd signals({SIGINT, SIGTERM});
-    lcm::LCM lcm;
-    if (!lcm.good()) {
-      std::cerr << "advee-stack-listen: LCM did not start (multicast route? see docs/modules.md)\n";
+    std::unique_ptr<lcm::LCM> bus;
+    try {
+      bus = advee::msgs::open_bus(advee::msgs::bus_url(""));
+    } catch (const advee::msgs::BusUnavailable& e) {
+      std::cerr << "advee-stack-listen: " << e.what() << "\n";
       return 1;
     }
+    lcm::LCM& lcm = *bus;
     Printer printer;
     std::set<std::string> unique(channels.begin(), channels.end());
     for (const auto& c : unique) lcm.subscribe(c, &Printer::on, &printer);

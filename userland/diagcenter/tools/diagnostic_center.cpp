@@ -21,6 +21,7 @@
 #include "advee/diagcenter/duration.hpp"
 #include "advee/diagcenter/model.hpp"
 #include "advee/diagcenter/text_summary.hpp"
+#include "advee/msgs/bus.hpp"
 #include "tui.hpp"
 
 using namespace advee::diagcenter;
@@ -143,7 +144,7 @@ int main(int argc, char** argv) {
   std::string for_text, period_text = "1s";
   DriveLimits limits;
   double steer_step_deg = limits.steering_step_rad * 180 / M_PI;
-  app.add_option("--lcm", url, "LCM URL (default: LCM_DEFAULT_URL, else LCM's udpm://239.255.76.67:7667?ttl=0)");
+  app.add_option("--lcm", url, "LCM URL (default: LCM_DEFAULT_URL, else /etc/advee/lcm.conf, else LCM's default group)");
   app.add_flag("--text", text, "no terminal UI: print a plain-text summary every --period to stdout");
   app.add_option("--for", for_text, "with --text: run for DURATION (30s, 500ms, 2m; a bare number is seconds) and exit");
   app.add_option("--period", period_text, "with --text: time between two summaries (default 1s)");
@@ -213,17 +214,16 @@ int main(int argc, char** argv) {
     return 64;
   }
 
-  lcm::LCM lcm(url);
-  if (!lcm.good()) {
-    std::cerr << kName << ": cannot set up LCM" << (url.empty() ? "" : " on " + url)
-              << " (multicast route? ip route add 224.0.0.0/4 dev lo)\n";
+  const auto bus_url = advee::msgs::bus_url(url);
+  std::unique_ptr<lcm::LCM> bus;
+  try {
+    bus = advee::msgs::open_bus(bus_url);
+  } catch (const advee::msgs::BusUnavailable& e) {
+    std::cerr << kName << ": " << e.what() << "\n";
     return 1;
   }
-  // The URL in effect, for messages: LCM's own choice when none is given.
-  if (url.empty()) {
-    const char* env = std::getenv("LCM_DEFAULT_URL");
-    url = env && *env ? env : "udpm://239.255.76.67:7667?ttl=0";
-  }
+  lcm::LCM& lcm = *bus;
+  url = bus_url.url;  // the URL in effect, for the display
   Model model;
   model.subscribe(lcm, mono_now);
   if (text) return run_text(lcm, model, *duration, *period, url);

@@ -13,6 +13,7 @@
 
 #include "advee/module/log_dir.hpp"
 #include "advee/module/time.hpp"
+#include "advee/msgs/bus.hpp"
 #include "advee/msgs/channels.hpp"
 #include "common/cmd_state_t.hpp"
 #include "common/data_state_t.hpp"
@@ -47,13 +48,13 @@ Module::Module(ModuleOptions opts, std::unique_ptr<TimerSource> own, TimerSource
   // before, inherited by children; a kernel without THP (the TS-7800's) just
   // keeps the flag.
   prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
-  // An empty URL lets LCM apply LCM_DEFAULT_URL.
-  lcm_ = std::make_unique<lcm::LCM>(opts_.lcm_url);
-  if (!lcm_->good())
-    throw ModuleExit(ExitKind::Resource, 1,
-                     "cannot set up LCM (url '" + opts_.lcm_url +
-                         "'; UDP multicast needs a multicast route, e.g. ip route add "
-                         "224.0.0.0/4 dev lo)");
+  try {
+    const auto url = msgs::bus_url(opts_.lcm_url, "module.lcm_url");
+    lcm_url_ = url.url;
+    lcm_ = msgs::open_bus(url);
+  } catch (const msgs::BusUnavailable& e) {
+    throw ModuleExit(ExitKind::Resource, 1, e.what());
+  }
   errors_ = std::make_unique<ErrorReporter>(opts_.name, opts_.errors, lcm_.get());
   try {
     if (const char* d = std::getenv(kLogDirEnv); d && *d)

@@ -14,6 +14,7 @@
 
 #include "advee/module/state.hpp"
 #include "advee/module/time.hpp"
+#include "advee/msgs/bus.hpp"
 #include "common/cmd_state_t.hpp"
 #include "common/data_module_phase_t.hpp"
 #include "common/data_state_t.hpp"
@@ -86,7 +87,7 @@ struct Echo {
 int main(int argc, char** argv) {
   CLI::App app{"advee-lcmctl: watch and command the Advee modules on LCM", "advee-lcmctl"};
   std::string url;
-  app.add_option("--url", url, "LCM URL (default: LCM_DEFAULT_URL or LCM's default group)");
+  app.add_option("--url", url, "LCM URL (default: LCM_DEFAULT_URL, else /etc/advee/lcm.conf, else LCM's default group)");
   app.require_subcommand(1);
 
   auto* echo = app.add_subcommand("echo", "print decoded messages of the channels, one line each");
@@ -106,11 +107,14 @@ int main(int argc, char** argv) {
   state->add_flag("--manual", manual, "an operator's command (needed to enter or leave STOP)");
   CLI11_PARSE(app, argc, argv);
 
-  lcm::LCM lcm(url);
-  if (!lcm.good()) {
-    std::cerr << "advee-lcmctl: cannot set up LCM\n";
+  std::unique_ptr<lcm::LCM> bus;
+  try {
+    bus = msgs::open_bus(msgs::bus_url(url, "--url"));
+  } catch (const msgs::BusUnavailable& e) {
+    std::cerr << "advee-lcmctl: " << e.what() << "\n";
     return 1;
   }
+  lcm::LCM& lcm = *bus;
   if (*state) {
     const auto s = module::parse_state(state_name_arg);
     if (!s || *s == module::State::Unknown) {

@@ -6,13 +6,13 @@
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
+#include "advee/msgs/bus.hpp"
 #include "sim/data_pose_t.hpp"
 
 namespace advee::robotsim {
 
-PosePublisher::PosePublisher(const std::string& url) : owned_(std::make_unique<lcm::LCM>(url)), lcm_(owned_.get()) {
-  if (!lcm_->good()) throw std::runtime_error("LCM: cannot open '" + (url.empty() ? "default URL" : url) + "'");
-}
+PosePublisher::PosePublisher(const std::string& url)
+    : owned_(msgs::open_bus(msgs::bus_url(url))), lcm_(owned_.get()) {}
 
 PosePublisher::PosePublisher(lcm::LCM& lcm) : lcm_(&lcm) {}
 

@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
                                   "moves as they do (real time only)")
       ->excludes(input_opt);
   auto* lcm_opt = app.add_option("--lcm", lcm_url, "publish the true pose on SIM_DATA_POSE at 10 Hz; optional LCM "
-                                                   "URL (default: LCM_DEFAULT_URL or LCM's own default)")
+                                                   "URL (default: LCM_DEFAULT_URL, else /etc/advee/lcm.conf, else LCM's own default)")
                       ->expected(0, 1);
   app.add_option("--rate", rate, "simulation steps per second")->check(CLI::Range(1.0, 10000.0))->capture_default_str();
   app.add_option("--publish-rate", publish_rate, "sensor frames per second sent to the simulators")

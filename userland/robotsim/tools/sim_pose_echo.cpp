@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 
+#include "advee/msgs/bus.hpp"
 #include "advee/robotsim/pose_publisher.hpp"
 #include "sim/data_pose_t.hpp"
 
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
   std::string url;
   double seconds = 0;
   long count = 0;
-  app.add_option("--url", url, "LCM URL (default: LCM_DEFAULT_URL or LCM's default group)");
+  app.add_option("--url", url, "LCM URL (default: LCM_DEFAULT_URL, else /etc/advee/lcm.conf, else LCM's default group)");
   app.add_option("-t,--timeout", seconds, "stop after this many seconds (0 = never)")->check(CLI::NonNegativeNumber);
   app.add_option("-n,--count", count, "stop after this many messages (0 = no limit)")->check(CLI::NonNegativeNumber);
   app.footer("EXIT STATUS: 0 at least one message, 1 none (or LCM failed), 2 bad option");
@@ -47,11 +48,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  lcm::LCM lcm(url);
-  if (!lcm.good()) {
-    std::fprintf(stderr, "robot-sim-pose: cannot open LCM\n");
+  std::unique_ptr<lcm::LCM> bus;
+  try {
+    bus = advee::msgs::open_bus(advee::msgs::bus_url(url, "--url"));
+  } catch (const advee::msgs::BusUnavailable& e) {
+    std::fprintf(stderr, "robot-sim-pose: %s\n", e.what());
     return 1;
   }
+  lcm::LCM& lcm = *bus;
   Printer p;
   lcm.subscribeFunction(advee::robotsim::kSimDataPoseChannel, &on_pose, &p);
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);

@@ -12,6 +12,7 @@
 #include "advee/module/log_dir.hpp"
 #include "advee/module/subscription.hpp"
 #include "advee/module/time.hpp"
+#include "advee/msgs/bus.hpp"
 #include "advee/msgs/channels.hpp"
 #include "common/cmd_state_t.hpp"
 #include "common/data_module_phase_t.hpp"
@@ -126,8 +127,7 @@ void Supervisor::launch(Proc& p) {
   std::map<std::string, std::string> extra;
   if (!self_.log_dir().empty()) extra[module::kLogDirEnv] = self_.log_dir().string();
   // The modules talk on the supervisor's bus unless their env says otherwise.
-  if (!self_.options().lcm_url.empty() && !p.spec.env.count("LCM_DEFAULT_URL"))
-    extra["LCM_DEFAULT_URL"] = self_.options().lcm_url;
+  if (!p.spec.env.count(msgs::kLcmUrlVariable)) extra[msgs::kLcmUrlVariable] = self_.lcm_url();
   try {
     p.pid = processes_.spawn(p.spec, extra);
   } catch (const std::system_error& e) {

@@ -4,13 +4,13 @@
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
+#include "advee/msgs/bus.hpp"
 #include "advee/web/message_json.hpp"
 
 namespace advee::web {
 
 LcmSource::LcmSource(const std::string& url, const std::vector<std::string>& channels, Sink sink)
-    : lcm_(std::make_unique<lcm::LCM>(url)), sink_(std::move(sink)) {
-  if (!lcm_->good()) throw std::runtime_error("cannot set up LCM" + (url.empty() ? "" : " for " + url));
+    : lcm_(msgs::open_bus(msgs::bus_url(url))), sink_(std::move(sink)) {
   // LCM anchors the (regular expression) name; ours are plain words.
   for (const auto& ch : channels) lcm_->subscribeFunction(ch, &LcmSource::on_message, this);
   thread_ = std::jthread([this](std::stop_token st) { run(st); });

@@ -82,8 +82,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--root", root, "directory of the page (index.html, dashboard.js, dashboard.css)")
       ->capture_default_str();
-  app.add_option("--lcm", lcm_url, "LCM URL, e.g. udpm://239.255.76.67:7667?ttl=0 (default: "
-                                   "LCM_DEFAULT_URL, else LCM's default group)");
+  app.add_option("--lcm", lcm_url, "LCM URL (default: LCM_DEFAULT_URL, else /etc/advee/lcm.conf, "
+                                   "else LCM's default group)");
   app.add_option("--robot", robot_file, "robot-sim robot file: outline, range finder and beacon "
                                         "scanner positions; \"\" = none")
       ->capture_default_str();

@@ -56,7 +56,7 @@ class ConfigNode {
 // The `module:` section every module's configuration file may have.
 struct ModuleOptions {
   std::string name;
-  std::string lcm_url;   // empty: LCM_DEFAULT_URL, else LCM's default multicast group
+  std::string lcm_url;   // empty: advee/msgs/bus.hpp decides (LCM_DEFAULT_URL, /etc/advee/lcm.conf, LCM's default)
   std::string log_root;  // empty: no log directory unless ADVEE_LOG_DIR is set
   ErrorReporter::Config errors;
   std::chrono::milliseconds announce_period{1000};

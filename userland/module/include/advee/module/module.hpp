@@ -53,6 +53,9 @@ class Module {
   const std::string& name() const { return opts_.name; }
   const ModuleOptions& options() const { return opts_; }
   lcm::LCM& lcm() { return *lcm_; }
+  // The URL the module's LCM uses (advee/msgs/bus.hpp: module.lcm_url, else
+  // LCM_DEFAULT_URL, else /etc/advee/lcm.conf, else LCM's default).
+  const std::string& lcm_url() const { return lcm_url_; }
   ErrorReporter& errors() { return *errors_; }
   // The loop's time: read now() here, not from a clock of your own.
   TimerSource& timers() { return timers_; }
@@ -95,6 +98,7 @@ class Module {
   SignalFd signals_;  // first: the mask must be in place before LCM starts threads
   std::unique_ptr<TimerSource> own_timers_;  // before every Timer: they cancel into it
   TimerSource& timers_;
+  std::string lcm_url_;
   std::unique_ptr<lcm::LCM> lcm_;
   std::filesystem::path log_dir_;
   std::unique_ptr<ErrorReporter> errors_;

@@ -20,7 +20,7 @@ inline constexpr const char* kSimDataPoseChannel = "SIM_DATA_POSE";
 
 class PosePublisher {
  public:
-  // `url` empty: LCM's default (LCM_DEFAULT_URL); throws std::runtime_error
+  // `url` empty: the robot's (advee/msgs/bus.hpp); throws std::runtime_error
   // when LCM cannot be set up.
   explicit PosePublisher(const std::string& url);
   // Publishes through `lcm`, which must outlive the publisher (tests: memq://).

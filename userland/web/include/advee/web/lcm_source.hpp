@@ -25,8 +25,8 @@ class LcmSource {
  public:
   using Sink = std::function<void(const nlohmann::json& message)>;
 
-  // Throws std::runtime_error when LCM cannot be set up for `url` ("" = LCM's
-  // default, LCM_DEFAULT_URL).
+  // `url` "" = the robot's (advee/msgs/bus.hpp). Throws
+  // msgs::BusUnavailable when LCM cannot be set up, naming the fix.
   LcmSource(const std::string& url, const std::vector<std::string>& channels, Sink sink);
   ~LcmSource();
   LcmSource(const LcmSource&) = delete;
