@@ -153,6 +153,10 @@ cross_check() {	# cross_check TARGET: every program of the install manifest exis
 	stage "userland cross build + install manifest ($1)" nice -n 10 "$TOP/scripts/cross-check.sh" "$1"
 	stage_row "userland cross build + install manifest ($1)" $?
 }
+pair_check() {	# the two-computer test: two x86_64 guests on a private link (tests/twocomp)
+	stage "two computers (tests/harness/vm-pair.sh)" "$TOP/tests/harness/vm-pair.sh"
+	stage_row "two computers: both guests ran their programs" $?
+}
 dkms_check() {	# dkms add/build/install in a private tree, then a VM loads its modules
 	stage "DKMS packaging (scripts/dkms-check.sh)" "$TOP/scripts/dkms-check.sh"
 	stage_row "DKMS packaging: dkms add/build/install, modules load in the VM" $?
@@ -207,14 +211,15 @@ full)
 	#           without x86_lane=user), then the armhf lane, then the armel
 	#           cross build (this track ends first otherwise);
 	#   vmuser  the x86_64 guest of the user-space suites (x86_lane=user in
-	#           their settings), then DKMS (its own guest);
+	#           their settings), then DKMS (its own guest), then the
+	#           two-computer test (two guests at once, about 5 min);
 	#   debug   the debug lane, as soon as its kernel is there (a cold build
 	#           runs in the background from the start; vm-debug.sh waits);
 	#   host    the unit tests, the browser check, the armhf cross build.
 	mapfile -t kernel_sel < <(x86_suites other | awk '{ print "--test"; print }')
 	mapfile -t user_sel < <(x86_suites user | awk '{ print "--test"; print }')
 	vm_track() { x86_lane x86_64 "${kernel_sel[@]}"; armhf_lane; cross_check armel; }
-	vmuser_track() { x86_lane x86_64-user "${user_sel[@]}"; dkms_check; }
+	vmuser_track() { x86_lane x86_64-user "${user_sel[@]}"; dkms_check; pair_check; }
 	track vm vm_track
 	track vmuser vmuser_track
 	track debug debug_lane
@@ -230,7 +235,7 @@ done >"$RESULTS/all.tsv"
 "$TOP/scripts/skip-policy.sh" "$RESULTS/all.tsv" >"$RESULTS/skip-policy.tsv"
 cat "$RESULTS/skip-policy.tsv" >>"$RESULTS/all.tsv"
 # VM time per suite and lane (the 7th column of the lanes' rows).
-for lane in x86_64 x86_64-2 x86_64-user armhf debug; do
+for lane in x86_64 x86_64-2 x86_64-user armhf debug twocomp-a twocomp-b; do
 	[ -s "$RESULTS/$lane.tsv" ] || continue
 	awk -F'\t' -v lane="$lane" '$7 != "" {
 			s = $1; sub(/^[^:]*: /, "", s); sub(/\/.*/, "", s); t[s] += $7

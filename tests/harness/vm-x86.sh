@@ -22,6 +22,13 @@
 #              and print its output (used by make demo)
 #   --interactive  with --run: the VM's console is this terminal and the program
 #              has no time limit (it opens /dev/ttyS0 itself: make demo's TUI)
+#   --run-timeout SECONDS  with --run: the program's time limit (default 300)
+#   --netdev SPEC  one Ethernet interface (virtio-net, eth0 in the guest) on the
+#              QEMU network backend SPEC (-netdev SPEC,id=net0), e.g. a
+#              datagram socket to another guest (tests/harness/vm-pair.sh)
+#   --mac MAC  its MAC address (two guests on one link need two)
+#   --monitor PATH  the QEMU monitor on the pipes PATH.in and PATH.out
+#              (created here): `echo set_link net0 off >PATH.in`
 # Environment: VMTEST_VERBOSE=1 streams the guest console; VMTEST_SMP, VMTEST_MEM;
 #   VMTEST_SLOWDOWN=N multiplies every program timeout and the boot allowance
 #   (a slower kernel: the debug lane); VMTEST_APPEND adds kernel parameters.
@@ -31,7 +38,7 @@ TOP=$(cd "$(dirname "$0")/../.." && pwd)
 . "$TOP/scripts/lib.sh"
 . "$TOP/tests/harness/lib-host.sh"
 
-tests=() shell=0 interactive=0 kver= kernel= modules= lane=x86_64 run= modbase=
+tests=() shell=0 interactive=0 kver= kernel= modules= lane=x86_64 run= modbase= run_timeout=300 netdev= mac= monitor=
 while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=("$2"); shift 2 ;;
@@ -43,7 +50,11 @@ while [ $# -gt 0 ]; do
 	--modroot) modbase=$(readlink -f "$2"); shift 2 ;;
 	--run) run=$(readlink -f "$2"); shift 2 ;;
 	--interactive) interactive=1; shift ;;
-	-h|--help) sed -n '3,29p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	--run-timeout) run_timeout=$2; shift 2 ;;
+	--netdev) netdev=$2; shift 2 ;;
+	--mac) mac=$2; shift 2 ;;
+	--monitor) monitor=$2; shift 2 ;;
+	-h|--help) sed -n '3,36p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-x86.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
@@ -102,7 +113,7 @@ rm -rf "$results"
 mkdir -p "$results"
 cp "$modules" "$results/modules.list"
 if [ -n "$run" ]; then
-	echo "main $(basename "$run" .sh) $run $([ "$interactive" = 1 ] && echo 604800 || echo 300)" >"$results/tests.list"
+	echo "main $(basename "$run" .sh) $run $([ "$interactive" = 1 ] && echo 604800 || echo "$run_timeout")" >"$results/tests.list"
 else
 	list_tests x86_64 "$BUILD/tests/x86_64" "$TOP" "${tests[@]}" >"$results/tests.list"
 fi
@@ -135,6 +146,20 @@ qemu=(qemu-system-x86_64 -machine pc -accel tcg -cpu "${VMTEST_CPU:-max}" -smp "
 	-virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap
 	-virtfs "local,path=$results,mount_tag=results,security_model=none"
 	-virtfs "local,path=$TOP,mount_tag=repo,security_model=none,readonly=on,multidevs=remap")
+if [ -n "$netdev" ]; then
+	# The guest's one NIC: this link instead of -nic none.
+	nics=() prev=
+	for a in "${qemu[@]}"; do
+		if [ "$prev" = -nic ] && [ "$a" = none ]; then unset "nics[${#nics[@]}-1]"; else nics+=("$a"); fi
+		prev=$a
+	done
+	qemu=("${nics[@]}" -netdev "$netdev,id=net0" -device "virtio-net-pci,netdev=net0${mac:+,mac=$mac}")
+fi
+if [ -n "$monitor" ]; then
+	rm -f "$monitor.in" "$monitor.out"
+	mkfifo "$monitor.in" "$monitor.out"
+	qemu+=(-chardev "pipe,id=mon0,path=$monitor" -mon chardev=mon0,mode=readline)
+fi
 append="console=ttyS0 panic=-1 loglevel=5 nokaslr mitigations=off vmtest.repo=$TOP vmtest.runner=$TOP/tests/harness/guest-run.sh${VMTEST_APPEND:+ $VMTEST_APPEND}"
 
 if [ -n "$run" ] && [ "$interactive" = 1 ]; then

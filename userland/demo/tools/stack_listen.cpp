@@ -4,11 +4,18 @@
 // SIM_DATA_POSE) and prints one decoded line per message:
 //   CHANNEL t=MONOTONIC_S module=SENDER key=value ...
 // so that a shell test can count messages per channel and compare values.
+// --stamps adds the sender's and the receiver's clock after t=:
+//   CHANNEL t=MONOTONIC_S utime=SENDER_US rx_us=REALTIME_US module=...
+// (every message type starts with int64_t utime, big-endian after LCM's
+// 8-byte type fingerprint): two listeners on two computers find the same
+// message by its utime (loss), and rx_us - utime is the clocks' difference
+// plus the transit (tests/twocomp).
 #include <lcm/lcm-cpp.hpp>
 #include <poll.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <set>
@@ -22,9 +29,26 @@
 
 namespace {
 
+std::int64_t sender_utime(const lcm::ReceiveBuffer& rb) {
+  if (rb.data_size < 16) return 0;
+  const auto* p = static_cast<const unsigned char*>(rb.data) + 8;
+  std::uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v = v << 8 | p[i];
+  return static_cast<std::int64_t>(v);
+}
+
 struct Printer {
+  bool stamps = false;
   void on(const lcm::ReceiveBuffer* rb, const std::string& ch) {
-    std::cout << advee::msgs::describe(*rb, ch) << '\n' << std::flush;
+    std::string line = advee::msgs::describe(*rb, ch);
+    if (stamps) {
+      const auto rx = std::chrono::duration_cast<std::chrono::microseconds>(
+                          std::chrono::system_clock::now().time_since_epoch()).count();
+      const auto after_t = line.find(' ', ch.size() + 1);
+      line.insert(after_t == std::string::npos ? line.size() : after_t,
+                  " utime=" + std::to_string(sender_utime(*rb)) + " rx_us=" + std::to_string(rx));
+    }
+    std::cout << line << '\n' << std::flush;
   }
 };
 
@@ -41,6 +65,8 @@ int main(int argc, char** argv) {
       "Exit status: 0, 1 when LCM does not start, 2 on bad arguments.",
       "advee-stack-listen"};
   app.add_option("-s,--seconds", seconds, "how long to listen")->check(CLI::Range(0.1, 86400.0))->capture_default_str();
+  bool stamps = false;
+  app.add_flag("--stamps", stamps, "add utime=SENDER_US rx_us=REALTIME_US after t=");
   app.add_option("channels", channels, "channels to listen to (default: all)");
   try {
     app.parse(argc, argv);
@@ -63,6 +89,7 @@ int main(int argc, char** argv) {
     }
     lcm::LCM& lcm = *bus;
     Printer printer;
+    printer.stamps = stamps;
     std::set<std::string> unique(channels.begin(), channels.end());
     for (const auto& c : unique) lcm.subscribe(c, &Printer::on, &printer);
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
