@@ -26,6 +26,7 @@
 #include <linux/mutex.h>
 #include <linux/regmap.h>
 #include <linux/util_macros.h>
+#include <compat/i2c_probe.h>
 
 /* Register map (datasheet table 3) */
 #define MAX6615_REG_TEMP(ch)		(0x00 + (ch))
@@ -1053,7 +1054,7 @@ static struct i2c_driver max6615_driver = {
 		.name = "max6615",
 		.of_match_table = max6615_of_match,
 	},
-	.probe_new = max6615_probe,
+	.I2C_DRIVER_PROBE = max6615_probe,
 	.id_table = max6615_id,
 	.detect = max6615_detect,
 	.address_list = max6615_addresses,

@@ -22,6 +22,7 @@
 #include <linux/module.h>
 #include <linux/platform_device.h>
 #include <linux/ts7800-fpga.h>
+#include <compat/platform_remove.h>
 
 /* BR-FAN1 default wiring (docs/dio-i2c.md); the seed's pins are unknown. */
 static unsigned int scl_pin = 1;
@@ -146,17 +147,16 @@ static int dio_i2c_probe(struct platform_device *pdev)
 	return 0;
 }
 
-static int dio_i2c_remove(struct platform_device *pdev)
+static void dio_i2c_remove(struct platform_device *pdev)
 {
 	struct dio_i2c *bus = platform_get_drvdata(pdev);
 
 	i2c_del_adapter(&bus->adap);
-	return 0;
 }
 
 static struct platform_driver dio_i2c_driver = {
 	.probe	= dio_i2c_probe,
-	.remove	= dio_i2c_remove,
+	.PLATFORM_DRIVER_REMOVE = dio_i2c_remove,
 	.driver	= {
 		.name = TS7800_DIO_I2C_DEV_NAME,
 	},

@@ -158,7 +158,7 @@ u8 rs485_crc(const u8 *buf, size_t len);
 
 /* rs485-rx.c */
 void rs485_rx_reset(struct rs485_bus *bus);
-void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int count);
+void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const u8 *fp, int count);
 
 /* rs485-tx.c */
 int rs485_line_setup(struct rs485_bus *bus);

@@ -11,6 +11,7 @@
 #include <linux/module.h>
 #include <linux/slab.h>
 #include <linux/tty.h>
+#include <compat/tty_ldisc_receive_buf.h>
 
 #include "n_rs485.h"
 
@@ -134,11 +135,13 @@ static void rs485_flush_buffer(struct tty_struct *tty)
 	rs485_events_flush(bus);
 }
 
-static void rs485_receive_buf(struct tty_struct *tty, const unsigned char *cp,
-			      const char *fp, int count)
+static void rs485_receive(struct tty_struct *tty, const u8 *cp, const u8 *fp,
+			  size_t count)
 {
 	rs485_rx_chars(tty->disc_data, cp, fp, count);
 }
+
+DEFINE_LDISC_RECEIVE_BUF(rs485_receive_buf, rs485_receive)
 
 static struct tty_ldisc_ops rs485_ldisc = {
 	.owner		= THIS_MODULE,

@@ -201,7 +201,7 @@ static void rs485_rx_char(struct rs485_bus *bus, u8 c, bool parity, bool lenient
  * difference or an error flag marks a collision. Returns how many of the
  * @count characters were the echo.
  */
-static int rs485_rx_echo(struct rs485_bus *bus, const u8 *cp, const char *fp, int count)
+static int rs485_rx_echo(struct rs485_bus *bus, const u8 *cp, const u8 *fp, int count)
 {
 	unsigned long flags;
 	bool done = false;
@@ -210,7 +210,7 @@ static int rs485_rx_echo(struct rs485_bus *bus, const u8 *cp, const char *fp, in
 	spin_lock_irqsave(&bus->lock, flags);
 	if (bus->echo_pos < bus->echo_len) {
 		for (; i < count && bus->echo_pos < bus->echo_len; i++) {
-			char flag = fp ? fp[i] : TTY_NORMAL;
+			u8 flag = fp ? fp[i] : TTY_NORMAL;
 
 			if ((flag != TTY_NORMAL && flag != TTY_PARITY) ||
 			    cp[i] != bus->echo_buf[bus->echo_pos])
@@ -225,7 +225,7 @@ static int rs485_rx_echo(struct rs485_bus *bus, const u8 *cp, const char *fp, in
 	return i;
 }
 
-void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int count)
+void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const u8 *fp, int count)
 {
 	ktime_t now = ktime_get();	/* every character of this call has ended */
 	unsigned long flags;
@@ -249,7 +249,7 @@ void rs485_rx_chars(struct rs485_bus *bus, const u8 *cp, const char *fp, int cou
 
 	echo = rs485_rx_echo(bus, cp, fp, count);
 	for (i = echo; i < count; i++) {
-		char flag = fp ? fp[i] : TTY_NORMAL;
+		u8 flag = fp ? fp[i] : TTY_NORMAL;
 
 		switch (flag) {
 		case TTY_NORMAL:

@@ -3,9 +3,11 @@
 #
 # build-kmod.sh TARGET [KDIR]: build every module of the project's Kbuild tree
 # with W=1 for one target kernel. TARGET is x86_64 (KDIR defaults to Debian's
-# amd64 headers), armhf (armmp), armel (marvell) or any name with an explicit
-# KDIR. The sources are mirrored into build/kmod/TARGET so that targets never
-# share objects; a compiler warning fails the build (W=1 must be clean).
+# 6.1 amd64 headers), x86_64-6.12 or x86_64-6.12-rt (bookworm-backports'
+# headers; lib.sh: amd64_kernel), armhf (armmp), armel (marvell) or any name
+# with an explicit KDIR. The sources are mirrored into build/kmod/TARGET so
+# that targets never share objects; a compiler warning fails the build (W=1
+# must be clean).
 # Output: build/kmod/TARGET/modules.list, one .ko path per line.
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
@@ -14,8 +16,9 @@ target=${1:?target}
 kdir=${2:-}
 make_args=(W=1)
 case $target in
-x86_64)
-	kdir=${kdir:-/usr/src/linux-headers-$("$TOP/scripts/kver.sh")}
+x86_64|x86_64-*)
+	# amd64_kernel sets kdir (and kver, vmlinuz, modbase).
+	[ -n "$kdir" ] || amd64_kernel "$(amd64_kernel_of "$target")"
 	;;
 armhf|armel)
 	root=$(arm_tree "$target" "$(arm_flavour "$target")")
@@ -29,10 +32,13 @@ esac
 [ -f "$kdir/Makefile" ] || die "no kernel build tree at $kdir (run: make deps)"
 # Debian's header packages lack the SJA1000 core's private header that
 # ts7800-can/sja1000-layout.c checks our copy of struct sja1000_priv against:
-# take it from linux-source-6.1, the source of those kernels.
+# take it from linux-source-6.1 or -6.12, the source of those kernels.
 case $target in
 x86_64|armhf|armel)
 	make_args+=(SJA1000_SRC="$("$TOP/scripts/kernel-source.sh" drivers/net/can/sja1000/sja1000.h)")
+	;;
+x86_64-6.12*)
+	make_args+=(SJA1000_SRC="$("$TOP/scripts/kernel-source.sh" 6.12 drivers/net/can/sja1000/sja1000.h)")
 	;;
 esac
 

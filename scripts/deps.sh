@@ -37,6 +37,11 @@ arm_tree armhf armmp >/dev/null
 arm_tree armel marvell >/dev/null
 # The Debian armhf tools the ARM VM lane's shell programs call.
 "$TOP/scripts/fetch-arm-userland.sh" armhf >/dev/null
-# checkpatch and modpost sources from linux-source-6.1 (cached in .cache/linux-source).
+# Debian's 6.12 amd64 kernels (stock and PREEMPT_RT) from bookworm-backports,
+# with linux-source-6.12 (cached in .cache/bpo/amd64).
+"$TOP/scripts/fetch-bpo-kernel.sh" >/dev/null
+# checkpatch and modpost sources from linux-source-6.1 and -6.12 (cached in
+# .cache/linux-source, .cache/linux-source-6.12).
 "$TOP/scripts/kernel-source.sh" >/dev/null
+"$TOP/scripts/kernel-source.sh" 6.12 >/dev/null
 say "dependencies ready (x86_64 kernel $kver)"

@@ -13,27 +13,10 @@ set -euo pipefail
 
 debarch=${1:?debian architecture (armhf|armel)}
 flavour=${2:?kernel flavour (armmp|marvell)}
-top=$(cd "$(dirname "$0")/.." && pwd)
-cache=${ADVEE_CACHE:-$top/.cache}/arm/$debarch
-mkdir -p "$cache/lists/partial" "$cache/sources" "$cache/debs"
-: > "$cache/status"
-
-# Only Debian's own sources: third-party repositories rarely carry ARM.
-src_found=0
-for f in /etc/apt/sources.list.d/debian.sources /etc/apt/sources.list; do
-	if [ -s "$f" ] && grep -qi 'debian' "$f"; then
-		cp "$f" "$cache/sources/$(basename "$f")"
-		src_found=1
-	fi
-done
-[ "$src_found" = 1 ] || { echo "fetch-arm-kernel: no Debian apt sources on this machine" >&2; exit 1; }
-[ -f "$cache/sources/sources.list" ] || : > "$cache/sources/sources.list"
-
-apt_opts=(-q -oAPT::Architecture="$debarch" -oAPT::Architectures="$debarch"
-	-oDir::State::Lists="$cache/lists" -oDir::State::status="$cache/status"
-	-oDir::Etc::SourceParts="$cache/sources" -oDir::Etc::SourceList="$cache/sources/sources.list"
-	-oDir::Cache="$cache/apt-cache" -oDebug::NoLocking=1)
-mkdir -p "$cache/apt-cache/archives/partial"
+. "$(dirname "$0")/lib.sh"
+cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$debarch
+mkdir -p "$cache/debs"
+private_apt "$cache" "$debarch"
 
 # The host's kbuild (amd64, Multi-Arch: foreign) builds for every architecture;
 # prefer the ARM kernel of exactly that version so the tools match.

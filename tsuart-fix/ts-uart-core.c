@@ -23,6 +23,8 @@
 #include <linux/tty.h>
 #include <linux/tty_flip.h>
 #include <linux/ts7800-fpga.h>
+#include <compat/platform_remove.h>
+#include <compat/serial_xmit.h>
 
 #include "ts-uart-frame.h"
 
@@ -161,7 +163,7 @@ static void ts_uart_rs485_done(struct ts_uart *up, unsigned int stat)
 {
 	struct uart_port *port = &up->port;
 
-	if (!up->rs485_sending || !uart_circ_empty(&port->state->xmit))
+	if (!up->rs485_sending || compat_uart_xmit_pending(port))
 		return;
 	if (stat & TS7800_STAT_TRE)
 		ts_uart_rs485_idle(up);
@@ -182,7 +184,7 @@ static enum hrtimer_restart ts_uart_rs485_poll(struct hrtimer *t)
 	uart_port_lock_irqsave(port, &flags);
 	if (up->rs485_sending && !ts_uart_read_stat(up, &stat)) {
 		if (stat & TS7800_STAT_TRE) {
-			if (uart_circ_empty(&port->state->xmit))
+			if (!compat_uart_xmit_pending(port))
 				ts_uart_rs485_idle(up);
 		} else {
 			hrtimer_forward_now(t, ts_uart_rs485_period(port));
@@ -251,20 +253,20 @@ static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
 static bool ts_uart_tx_chars(struct ts_uart *up, unsigned int *stat)
 {
 	struct uart_port *port = &up->port;
-	struct circ_buf *xmit = &port->state->xmit;
 	bool sent = false;
 	u16 word;
+	u8 ch;
 
 	/* tx_empty() may serve a port that is not started (no buffer). */
-	if (!xmit->buf)
+	if (!compat_uart_xmit_ready(port))
 		return false;
 	while (*stat & TS7800_STAT_TBRE) {
 		if (port->x_char) {
 			word = ts_uart_frame_encode(&up->frame, port->x_char);
 			port->x_char = 0;
 			port->icount.tx++;
-		} else if (!uart_circ_empty(xmit) && !uart_tx_stopped(port)) {
-			word = ts_uart_frame_encode(&up->frame, xmit->buf[xmit->tail]);
+		} else if (!uart_tx_stopped(port) && compat_uart_xmit_peek(port, &ch)) {
+			word = ts_uart_frame_encode(&up->frame, ch);
 			uart_xmit_advance(port, 1);
 		} else {
 			break;
@@ -276,7 +278,7 @@ static bool ts_uart_tx_chars(struct ts_uart *up, unsigned int *stat)
 		if (ts_uart_read_stat(up, stat))
 			break;
 	}
-	if (uart_circ_chars_pending(xmit) < WAKEUP_CHARS)
+	if (compat_uart_xmit_pending(port) < WAKEUP_CHARS)
 		uart_write_wakeup(port);
 	ts_uart_rs485_done(up, *stat);
 	return sent;
@@ -666,12 +668,11 @@ static int ts_uart_probe(struct platform_device *pdev)
 	return uart_add_one_port(&ts_uart_driver, port);
 }
 
-static int ts_uart_remove(struct platform_device *pdev)
+static void ts_uart_remove(struct platform_device *pdev)
 {
 	struct ts_uart *up = platform_get_drvdata(pdev);
 
 	uart_remove_one_port(&ts_uart_driver, &up->port);
-	return 0;
 }
 
 static const struct platform_device_id ts_uart_ids[] = {
@@ -682,7 +683,7 @@ MODULE_DEVICE_TABLE(platform, ts_uart_ids);
 
 static struct platform_driver ts_uart_platform_driver = {
 	.probe		= ts_uart_probe,
-	.remove		= ts_uart_remove,
+	.PLATFORM_DRIVER_REMOVE = ts_uart_remove,
 	.id_table	= ts_uart_ids,
 	.driver		= {
 		.name	= TS_UART_DRV_NAME,

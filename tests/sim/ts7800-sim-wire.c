@@ -257,7 +257,6 @@ static const struct file_operations wire_fops = {
 	.poll		= wire_poll,
 	.unlocked_ioctl	= wire_ioctl,
 	.compat_ioctl	= compat_ptr_ioctl,
-	.llseek		= no_llseek,
 };
 
 int sim_wire_register(struct sim_uart *u)

@@ -13,12 +13,11 @@
 #define _LINUX_TS7800_FPGA_H
 
 #include <linux/bits.h>
+#include <linux/regmap.h>
 #include <linux/types.h>
 
 struct device;
 struct irq_domain;
-struct regmap;
-struct regmap_config;
 struct resource;
 
 /* Name of the parent's regmap of the window (dev_get_regmap()). */
