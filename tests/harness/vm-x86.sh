@@ -3,14 +3,20 @@
 #
 # vm-x86.sh - the x86_64 VM test lane.
 #
-# Boots Debian's installed 6.1 amd64 kernel under QEMU TCG (never KVM) with a
+# Boots Debian's installed 6.1 amd64 kernel (or with --kernel-flavour one of
+# the other supported amd64 kernels) under QEMU TCG (never KVM) with a
 # busybox initramfs that mounts the host's root read-only over virtio-9p and a
 # writable results share, installs the just-built modules in the guest and runs
 # the VM test programs (tests/vm/<suite>/) in one boot. See docs/testing.md.
 #
 # usage: vm-x86.sh [--test SUITE[/PROGRAM]] [--shell] [--kver RELEASE]
 #                  [--modules LIST] [--kernel VMLINUZ] [--lane NAME] [--modroot DIR]
+#                  [--kernel-flavour NAME]
 #   --test     run only this suite, or one program of it (repeatable)
+#   --kernel-flavour  6.1 (default), 6.12 or 6.12-rt (lib.sh: AMD64_KERNELS):
+#              boot that Debian kernel with the modules built for it
+#              (build-kmod.sh x86_64 or x86_64-NAME); sets --kver, --kernel,
+#              --modroot, --modules and the lane (x86_64-NAME) unless given
 #   --shell    boot to an interactive shell in the guest instead of testing
 #   --kver     kernel release to boot (default: scripts/kver.sh)
 #   --kernel   kernel image (default: /boot/vmlinuz-RELEASE)
@@ -38,7 +44,7 @@ TOP=$(cd "$(dirname "$0")/../.." && pwd)
 . "$TOP/scripts/lib.sh"
 . "$TOP/tests/harness/lib-host.sh"
 
-tests=() shell=0 interactive=0 kver= kernel= modules= lane=x86_64 run= modbase= run_timeout=300 netdev= mac= monitor=
+tests=() shell=0 interactive=0 kver= kernel= modules= lane= run= modbase= run_timeout=300 netdev= mac= monitor= flavour=
 while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=("$2"); shift 2 ;;
@@ -48,21 +54,30 @@ while [ $# -gt 0 ]; do
 	--modules) modules=$2; shift 2 ;;
 	--lane) lane=$2; shift 2 ;;
 	--modroot) modbase=$(readlink -f "$2"); shift 2 ;;
+	--kernel-flavour) flavour=$2; shift 2 ;;
 	--run) run=$(readlink -f "$2"); shift 2 ;;
 	--interactive) interactive=1; shift ;;
 	--run-timeout) run_timeout=$2; shift 2 ;;
 	--netdev) netdev=$2; shift 2 ;;
 	--mac) mac=$2; shift 2 ;;
 	--monitor) monitor=$2; shift 2 ;;
-	-h|--help) sed -n '3,36p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '3,41p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-x86.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
+if [ -n "$flavour" ] && [ "$flavour" != 6.1 ]; then
+	flavour_kver=$kver flavour_kernel=$kernel flavour_modbase=$modbase
+	amd64_kernel "$flavour"	# sets kver, vmlinuz, modbase (kdir)
+	kver=${flavour_kver:-$kver} kernel=${flavour_kernel:-$vmlinuz} modbase=${flavour_modbase:-$modbase}
+	modules=${modules:-$BUILD/kmod/x86_64-$flavour/modules.list}
+	lane=${lane:-x86_64-$flavour}
+fi
+lane=${lane:-x86_64}
 kver=${kver:-$("$TOP/scripts/kver.sh")}
 kernel=${kernel:-/boot/vmlinuz-$kver}
 modules=${modules:-$BUILD/kmod/x86_64/modules.list}
 [ -r "$kernel" ] || die "no kernel image $kernel (run: make deps)"
-[ -r "$modules" ] || die "no module list $modules (run: make modules)"
+[ -r "$modules" ] || die "no module list $modules (run: make modules${flavour:+, or scripts/build-kmod.sh x86_64-$flavour})"
 # The kernel's own modules: the host's /lib/modules, or a tree given by --modroot.
 kmods=$modbase/lib/modules/$kver
 [ -d "$kmods" ] || die "no module tree $kmods for $kver"

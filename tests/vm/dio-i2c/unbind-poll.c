@@ -333,9 +333,12 @@ int main(void)
 	/*
 	 * ts7800_dio_stop_poll() tail-calls cancel_delayed_work_sync(), so
 	 * the stack shows the cancel under devres_release_all(): the only
-	 * work the DIO driver's devres cancels is the poll.
+	 * work the DIO driver's devres cancels is the poll. 6.1 shows it as
+	 * __cancel_work_timer, 6.12 as cancel_delayed_work_sync (over
+	 * __flush_work).
 	 */
-	while (!(waiting = u.tid && stack_has(u.tid, "cancel_work") &&
+	while (!(waiting = u.tid && (stack_has(u.tid, "cancel_work") ||
+				     stack_has(u.tid, "cancel_delayed_work")) &&
 			   stack_has(u.tid, "devres_release_all")) &&
 	       u.result == 1 && now_s() < end)
 		usleep(2000);
