@@ -39,6 +39,20 @@ stage_install() {
 	"$VMTEST_REPO/scripts/install.sh" --destdir "$DEST" "$@"
 }
 
+# tap_stage_install DESC [ARGS]: stage_install as a TAP point, its output as
+# diagnostics when it fails. Not through tap_ok, whose $(...) is a subshell:
+# the overlay stage_install mounts must be recorded in this shell's MOUNTS
+# for cleanup_mounts, or it stays mounted under the next program (two left
+# over made the third overlay mount on the build directory fail).
+tap_stage_install() {
+	local desc=$1 rc
+	shift
+	stage_install "$@" >"$VMTEST_SCRATCH/stage_install.log" 2>&1
+	rc=$?
+	[ "$rc" = 0 ] || sed 's/^/# /' "$VMTEST_SCRATCH/stage_install.log"
+	tap_result "$rc" "$desc"
+}
+
 # stage_system: only the system files (udev, systemd, sysusers, configs), so
 # that the rules and units are tested whatever state the userland build is in.
 stage_system() {
