@@ -33,25 +33,19 @@ class BusUrlTest : public ::testing::Test {
   std::filesystem::path conf_;
 };
 
-TEST_F(BusUrlTest, TheFileWhenNothingElseIsSet) {
+// Each source in turn added in front of the ones before: the newest wins.
+TEST_F(BusUrlTest, FirstFoundWins) {
   write("# robot\nLCM_DEFAULT_URL=udpm://239.255.76.67:7667?ttl=1\n");
-  const auto u = bus_url("", "--lcm", conf_.string());
+  auto u = bus_url("", "--lcm", conf_.string());
   EXPECT_EQ(u.url, "udpm://239.255.76.67:7667?ttl=1");
   EXPECT_EQ(u.from, conf_.string());
-}
 
-TEST_F(BusUrlTest, EnvironmentBeforeTheFile) {
-  write("LCM_DEFAULT_URL=udpm://239.255.76.67:7667?ttl=1\n");
   setenv("LCM_DEFAULT_URL", "udpm://239.255.76.67:7700?ttl=0", 1);
-  const auto u = bus_url("", "--lcm", conf_.string());
+  u = bus_url("", "--lcm", conf_.string());
   EXPECT_EQ(u.url, "udpm://239.255.76.67:7700?ttl=0");
   EXPECT_EQ(u.from, "LCM_DEFAULT_URL");
-}
 
-TEST_F(BusUrlTest, TheProgramsOwnSettingFirst) {
-  write("LCM_DEFAULT_URL=udpm://239.255.76.67:7667?ttl=1\n");
-  setenv("LCM_DEFAULT_URL", "udpm://239.255.76.67:7700?ttl=0", 1);
-  const auto u = bus_url("memq://", "module.lcm_url", conf_.string());
+  u = bus_url("memq://", "module.lcm_url", conf_.string());
   EXPECT_EQ(u.url, "memq://");
   EXPECT_EQ(u.from, "module.lcm_url");
 }
