@@ -17,6 +17,7 @@
 #include <linux/ktime.h>
 #include <linux/list.h>
 #include <linux/mutex.h>
+#include <linux/serial.h>
 #include <linux/spinlock.h>
 #include <linux/tty.h>
 #include <linux/wait.h>
@@ -149,8 +150,22 @@ struct rs485_bus {
 	u16 node_err[256];
 
 	struct ktermios saved_termios;
+	/*
+	 * N_RS485_PATH_ADDRB: the port's RS-485 setting before attach (put
+	 * back at detach) and the one the bus uses (rs485-tx.c).
+	 */
+	bool addrb;
+	struct serial_rs485 saved_rs485;
+	struct serial_rs485 rs485;
 	struct mutex line_mutex;	/* termios and cfg: worker vs SET_CONFIG */
 };
+
+/*
+ * N_RS485_IOC_GET_STATS of a program built before issue 20 extended
+ * struct n_rs485_stats: the same request for its first 18 fields.
+ */
+#define N_RS485_IOC_GET_STATS_V1 \
+	_IOC(_IOC_READ, N_RS485_IOC_MAGIC, 4, offsetof(struct n_rs485_stats, tx_path))
 
 /* rs485-crc.c */
 void rs485_crc_init(void);
@@ -169,6 +184,7 @@ void rs485_line_wait(struct rs485_bus *bus);
 int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len);
 
 /* rs485-xact.c */
+void rs485_count(struct rs485_bus *bus, u64 *counter);
 struct rs485_req *rs485_req_alloc(void);
 void rs485_req_put(struct rs485_req *req);
 int rs485_req_submit(struct rs485_bus *bus, struct rs485_req *req);

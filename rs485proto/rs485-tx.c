@@ -1,7 +1,17 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * rs485-tx.c - the line: termios on attach and detach, and sending one frame
- * with the 9th bit carried by sticky parity.
+ * on one of two paths (enum n_rs485_tx_path), chosen at attach.
+ *
+ * N_RS485_PATH_ADDRB, on a serial_core port that offers mainline's 9-bit
+ * addressing (SER_RS485_ADDRB): the port runs in ADDRB mode, and each frame
+ * is SER_RS485_ADDR_DEST with its address, which the UART sends before the
+ * data written next (after anything still queued), then the rest of the
+ * frame written in one go and one drain. serial_core takes TIOCSRS485 only
+ * from a user pointer, so the discipline applies the setting the way
+ * uart_set_rs485_config() does, under the port mutex and lock.
+ *
+ * N_RS485_PATH_PARITY, on every other UART:
  *
  * The address character goes out in mark parity (PARENB|CMSPAR|PARODD: 9th
  * bit 1), the rest in space parity (9th bit 0). Parity may only change when
@@ -18,6 +28,7 @@
 #include <linux/hrtimer.h>
 #include <linux/jiffies.h>
 #include <linux/sched.h>
+#include <linux/serial_core.h>
 
 #include "n_rs485.h"
 
@@ -28,11 +39,112 @@
 /* Echo mode: how long the rest of the echo may lag behind the line. */
 #define RS485_ECHO_WAIT_NS	(50 * NSEC_PER_MSEC)
 
+static bool addrb = true;
+module_param(addrb, bool, 0644);
+MODULE_PARM_DESC(addrb,
+		 "send the 9th bit by the UART's 9-bit addressing (SER_RS485_ADDRB) where it offers it (default 1); 0: always by mark/space parity; read at attach");
+
+/*
+ * The serial_core state of @tty, or NULL if it is not a serial_core port:
+ * serial_core is the only user of tty_driver.driver_state, its uart_driver,
+ * which points back to the tty_driver.
+ */
+static struct uart_state *rs485_uart_state(struct tty_struct *tty)
+{
+	struct uart_driver *drv = tty->driver->driver_state;
+
+	if (!drv || drv->tty_driver != tty->driver)
+		return NULL;
+	return tty->driver_data;
+}
+
+/*
+ * TIOCSRS485 from the kernel, as uart_set_rs485_config() does it for a user:
+ * the driver's rs485_config() under the port mutex and lock; @termios the
+ * tty's (its termios_rwsem held for writing) or NULL. Only while the port
+ * is up if @up. @r is the setting the port stores.
+ */
+static int rs485_uart_config(struct rs485_bus *bus, struct serial_rs485 *r,
+			     struct ktermios *termios, bool up)
+{
+	struct uart_state *state = rs485_uart_state(bus->tty);
+	struct uart_port *uport;
+	unsigned long flags;
+	int ret = -EIO;
+
+	if (!state)
+		return -EOPNOTSUPP;
+	mutex_lock(&state->port.mutex);
+	uport = state->uart_port;
+	if (uport && (!up || tty_port_initialized(&state->port))) {
+		uart_port_lock_irqsave(uport, &flags);
+		ret = uport->rs485_config(uport, termios, r);
+		if (!ret)
+			uport->rs485 = *r;
+		uart_port_unlock_irqrestore(uport, flags);
+	}
+	mutex_unlock(&state->port.mutex);
+	return ret;
+}
+
+/* As rs485_uart_config(), with the tty's termios (ADDRB switches there). */
+static int rs485_uart_config_termios(struct rs485_bus *bus, struct serial_rs485 *r)
+{
+	struct tty_struct *tty = bus->tty;
+	int ret;
+
+	down_write(&tty->termios_rwsem);
+	ret = rs485_uart_config(bus, r, &tty->termios, false);
+	up_write(&tty->termios_rwsem);
+	return ret;
+}
+
+/*
+ * At attach: does the port offer SER_RS485_ADDRB? Then remember its
+ * RS-485 setting and make the one the bus uses: RS-485 on (RTS as it was
+ * set, else RTS on send: the transceiver's driver enable if it is wired to
+ * RTS), ADDRB.
+ */
+static bool rs485_addrb_offered(struct rs485_bus *bus)
+{
+	struct uart_state *state = rs485_uart_state(bus->tty);
+	struct uart_port *uport;
+	bool offered = false;
+
+	if (!addrb || !state)
+		return false;
+	mutex_lock(&state->port.mutex);
+	uport = state->uart_port;
+	if (uport && uport->rs485_config &&
+	    (uport->rs485_supported.flags & SER_RS485_ADDRB)) {
+		offered = true;
+		bus->saved_rs485 = uport->rs485;
+	}
+	mutex_unlock(&state->port.mutex);
+	if (!offered)
+		return false;
+
+	bus->rs485 = bus->saved_rs485;
+	if (!(bus->rs485.flags & SER_RS485_ENABLED))
+		bus->rs485.flags = SER_RS485_ENABLED | SER_RS485_RTS_ON_SEND;
+	bus->rs485.flags &= ~(SER_RS485_ADDR_RECV | SER_RS485_ADDR_DEST);
+	bus->rs485.flags |= SER_RS485_ADDRB;
+	bus->rs485.addr_recv = 0;
+	bus->rs485.addr_dest = 0;
+	/* Restored at detach: a destination address there would be sent. */
+	bus->saved_rs485.flags &= ~SER_RS485_ADDR_DEST;
+	bus->saved_rs485.addr_dest = 0;
+	return true;
+}
+
 static void rs485_termios_bus(struct rs485_bus *bus, struct ktermios *t, bool mark)
 {
 	t->c_cflag &= ~(CSIZE | CSTOPB | PARODD | CRTSCTS | HUPCL);
 	t->c_cflag |= CS8 | PARENB | CMSPAR | CREAD | CLOCAL;
-	if (mark)
+	/* ADDRB: the UART's address bit is the 9th bit, no parity. */
+	if (bus->addrb)
+		t->c_cflag &= ~(PARENB | CMSPAR);
+	else if (mark)
 		t->c_cflag |= PARODD;
 	t->c_iflag &= ~(IGNPAR | PARMRK | ISTRIP | IXON | IXOFF | IXANY | IGNBRK);
 	/*
@@ -56,7 +168,17 @@ static void rs485_set_parity(struct rs485_bus *bus, bool mark)
 	tty_set_termios(tty, &t);
 }
 
-/* Called from open(): remember the port's termios and take the bus over. */
+/* A termios switch for sending a frame (counted). */
+static void rs485_switch_parity(struct rs485_bus *bus, bool mark)
+{
+	rs485_set_parity(bus, mark);
+	rs485_count(bus, &bus->stats.termios_switches);
+}
+
+/*
+ * Called from open(): remember the port's termios and take the bus over,
+ * on the addressing path if the port offers it.
+ */
 int rs485_line_setup(struct rs485_bus *bus)
 {
 	struct tty_struct *tty = bus->tty;
@@ -64,8 +186,22 @@ int rs485_line_setup(struct rs485_bus *bus)
 	down_read(&tty->termios_rwsem);
 	bus->saved_termios = tty->termios;
 	up_read(&tty->termios_rwsem);
-	rs485_set_parity(bus, false);
 	bus->line_free = ktime_get();
+	if (rs485_addrb_offered(bus)) {
+		/* 8N1 first: the UART refuses ADDRB while parity is on. */
+		bus->addrb = true;
+		rs485_set_parity(bus, false);
+		if (!rs485_uart_config_termios(bus, &bus->rs485) &&
+		    (tty->termios.c_cflag & ADDRB)) {
+			bus->stats.tx_path = N_RS485_PATH_ADDRB;
+			return 0;
+		}
+		dev_warn(tty->dev, "n_rs485: 9-bit addressing refused, using mark/space parity\n");
+		rs485_uart_config_termios(bus, &bus->saved_rs485);
+		bus->addrb = false;
+	}
+	bus->stats.tx_path = N_RS485_PATH_PARITY;
+	rs485_set_parity(bus, false);
 	if (!(tty->termios.c_cflag & PARENB) || !(tty->termios.c_cflag & CMSPAR)) {
 		/* The driver cleared them: this UART cannot carry the 9th bit. */
 		rs485_line_restore(bus);
@@ -76,6 +212,8 @@ int rs485_line_setup(struct rs485_bus *bus)
 
 void rs485_line_restore(struct rs485_bus *bus)
 {
+	if (bus->addrb)
+		rs485_uart_config_termios(bus, &bus->saved_rs485);
 	tty_set_termios(bus->tty, &bus->saved_termios);
 }
 
@@ -163,6 +301,7 @@ static int rs485_drain(struct rs485_bus *bus, size_t nchars)
 	u64 char_ns = rs485_char_ns(bus);
 	long left;
 
+	rs485_count(bus, &bus->stats.drains);
 	left = wait_event_interruptible_timeout(tty->write_wait,
 						!tty_chars_in_buffer(tty) || READ_ONCE(bus->dead),
 						RS485_DRAIN_TIMEOUT);
@@ -275,22 +414,42 @@ void rs485_line_wait(struct rs485_bus *bus)
  * has come back): 0, -ECOMM (echo mode: collision) or another negative
  * error (detach, hangup, stuck transmitter).
  */
-int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
+/*
+ * N_RS485_PATH_ADDRB: the address as SER_RS485_ADDR_DEST (the UART sends it
+ * after what is queued and before what is written next), the rest at once.
+ */
+static int rs485_tx_addrb(struct rs485_bus *bus, const u8 *buf, size_t len)
 {
-	u64 gap_ns = bus->cfg.gap_chars * rs485_char_ns(bus);
-	bool echo = bus->cfg.flags & N_RS485_CFG_ECHO;
-	struct tty_port *port = bus->tty->port;
-	unsigned long flags;
-	int ret, echo_ret;
+	struct serial_rs485 r = bus->rs485;
+	int ret;
 
-	if (echo)
-		rs485_echo_expect(bus, buf, len);
-	rs485_rx_lenient(bus, true);
-	rs485_set_parity(bus, true);
-	ret = rs485_write_all(bus, buf, 1);
+	r.flags |= SER_RS485_ADDR_DEST;
+	r.addr_dest = buf[0];
+	ret = rs485_uart_config(bus, &r, NULL, true);
 	if (!ret)
+		ret = rs485_write_all(bus, buf + 1, len - 1);
+	if (!ret)
+		ret = rs485_drain(bus, len);
+	return ret;
+}
+
+/*
+ * N_RS485_PATH_PARITY: address in mark parity, drain, data in space parity,
+ * drain.
+ */
+static int rs485_tx_parity(struct rs485_bus *bus, const u8 *buf, size_t len)
+{
+	struct tty_port *port = bus->tty->port;
+	int ret;
+
+	rs485_rx_lenient(bus, true);
+	rs485_switch_parity(bus, true);
+	ret = rs485_write_all(bus, buf, 1);
+	if (!ret) {
 		ret = rs485_drain(bus, 1);
-	rs485_set_parity(bus, false);
+		rs485_count(bus, &bus->stats.addr_drains);
+	}
+	rs485_switch_parity(bus, false);
 	if (!ret) {
 		ret = rs485_write_all(bus, buf + 1, len - 1);
 		if (!ret)
@@ -304,6 +463,22 @@ int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
 	if (port)
 		flush_work(&port->buf.work);
 	rs485_rx_lenient(bus, false);
+	return ret;
+}
+
+int rs485_tx_frame(struct rs485_bus *bus, const u8 *buf, size_t len)
+{
+	u64 gap_ns = bus->cfg.gap_chars * rs485_char_ns(bus);
+	bool echo = bus->cfg.flags & N_RS485_CFG_ECHO;
+	unsigned long flags;
+	int ret, echo_ret;
+
+	if (echo)
+		rs485_echo_expect(bus, buf, len);
+	if (bus->addrb)
+		ret = rs485_tx_addrb(bus, buf, len);
+	else
+		ret = rs485_tx_parity(bus, buf, len);
 	if (echo) {
 		echo_ret = rs485_echo_check(bus);
 		if (!ret)

@@ -291,7 +291,8 @@ static int rs485_ioc_get_config(struct rs485_bus *bus, void __user *arg)
 	return copy_to_user(arg, &cfg, sizeof(cfg)) ? -EFAULT : 0;
 }
 
-static int rs485_ioc_get_stats(struct rs485_bus *bus, void __user *arg)
+/* @size: what the caller's struct n_rs485_stats holds (older: a prefix) */
+static int rs485_ioc_get_stats(struct rs485_bus *bus, void __user *arg, size_t size)
 {
 	struct n_rs485_stats st;
 	unsigned long flags;
@@ -300,7 +301,7 @@ static int rs485_ioc_get_stats(struct rs485_bus *bus, void __user *arg)
 	spin_lock_irqsave(&bus->lock, flags);
 	st = bus->stats;
 	spin_unlock_irqrestore(&bus->lock, flags);
-	return copy_to_user(arg, &st, sizeof(st)) ? -EFAULT : 0;
+	return copy_to_user(arg, &st, size) ? -EFAULT : 0;
 }
 
 static int rs485_ioc_node(struct rs485_bus *bus, void __user *arg, bool reset)
@@ -353,7 +354,8 @@ int rs485_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long arg)
 	case N_RS485_IOC_SET_CONFIG:
 		return rs485_ioc_set_config(bus, uarg);
 	case N_RS485_IOC_GET_STATS:
-		return rs485_ioc_get_stats(bus, uarg);
+	case N_RS485_IOC_GET_STATS_V1:
+		return rs485_ioc_get_stats(bus, uarg, _IOC_SIZE(cmd));
 	case N_RS485_IOC_GET_NODE:
 		return rs485_ioc_node(bus, uarg, false);
 	case N_RS485_IOC_RESET_NODE:
@@ -374,6 +376,7 @@ int rs485_compat_ioctl(struct tty_struct *tty, unsigned int cmd, unsigned long a
 	case N_RS485_IOC_GET_CONFIG:
 	case N_RS485_IOC_SET_CONFIG:
 	case N_RS485_IOC_GET_STATS:
+	case N_RS485_IOC_GET_STATS_V1:
 	case N_RS485_IOC_GET_NODE:
 	case N_RS485_IOC_RESET_NODE:
 	case FIONREAD:

@@ -198,7 +198,7 @@ static size_t rs485_req_encode(const struct rs485_req *req, bool resend, u8 *buf
 	return len + 1;
 }
 
-static void rs485_count(struct rs485_bus *bus, u64 *counter)
+void rs485_count(struct rs485_bus *bus, u64 *counter)
 {
 	unsigned long flags;
 

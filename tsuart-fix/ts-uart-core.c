@@ -7,6 +7,8 @@
  * devices stealing each other's characters. 9-bit characters use standard
  * termios: PARENB | CMSPAR sends PARODD as the 9th bit and flags received
  * characters with the other 9th bit as TTY_PARITY (see ts-uart-frame.c).
+ * Or mainline's 9-bit addressing: TIOCSRS485 with SER_RS485_ADDRB makes the
+ * 9th bit an address bit (docs/tsuart.md, "9-bit addressing").
  *
  * The port is a child of the FPGA core (or of the simulator): registers are
  * reached through the parent's regmap, the interrupt is the parent's.
@@ -69,6 +71,19 @@ struct ts_uart {
 	bool rs485_sending;
 	/* RS-485: polls TRE after the last character went into the FIFO */
 	struct hrtimer rs485_timer;
+	/*
+	 * ADDRB (port lock): SER_RS485_ADDR_DEST's address goes out once the
+	 * addr_after characters queued before it have gone, together with the
+	 * first character written after it (so that no idle line separates
+	 * them, however late the writer comes); addr_recv is
+	 * SER_RS485_ADDR_RECV's address (-1: none) and rx_match says whether
+	 * the last address received was it.
+	 */
+	bool addr_pending;
+	u8 addr_dest;
+	unsigned int addr_after;
+	int addr_recv;
+	bool rx_match;
 };
 
 static inline struct ts_uart *to_ts_uart(struct uart_port *port)
@@ -195,11 +210,24 @@ static enum hrtimer_restart ts_uart_rs485_poll(struct hrtimer *t)
 	return again;
 }
 
+/*
+ * ADDRB with SER_RS485_ADDR_RECV: only an address character equal to
+ * addr_recv and the characters after it up to the next address pass.
+ */
+static bool ts_uart_addr_match(struct ts_uart *up, u8 ch, bool is_addr)
+{
+	if (up->addr_recv < 0)
+		return true;
+	if (is_addr)
+		up->rx_match = ch == up->addr_recv;
+	return up->rx_match;
+}
+
 /* Read one character; stat is the STAT value that showed DR. */
 static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
 {
 	struct uart_port *port = &up->port;
-	unsigned int word, status = TS_UART_ST_DR, err;
+	unsigned int word, status = TS_UART_ST_DR, err = 0;
 	char flag = TTY_NORMAL;
 	u8 ch;
 
@@ -232,6 +260,12 @@ static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
 	/* stop_rx(): keep draining the FIFO, deliver nothing. */
 	if (!(port->read_status_mask & TS_UART_ST_DR))
 		return;
+	if (!(status & TS_UART_ST_BRK) &&
+	    !ts_uart_addr_match(up, ch, err & TS_UART_RX_ADDRESS)) {
+		if ((status & TS_UART_ST_OE) && !(port->ignore_status_mask & TS_UART_ST_OE))
+			tty_insert_flip_char(&port->state->port, 0, TTY_OVERRUN);
+		return;
+	}
 
 	status &= port->read_status_mask;
 	if (status & TS_UART_ST_BRK)
@@ -240,6 +274,8 @@ static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
 		flag = TTY_PARITY;
 	else if (status & TS_UART_ST_FE)
 		flag = TTY_FRAME;
+	else if (err & TS_UART_RX_ADDRESS)
+		flag = TTY_PARITY;	/* ADDRB: an address, whatever INPCK says */
 
 	if (uart_prepare_sysrq_char(port, ch))
 		return;
@@ -265,9 +301,18 @@ static bool ts_uart_tx_chars(struct ts_uart *up, unsigned int *stat)
 			word = ts_uart_frame_encode(&up->frame, port->x_char);
 			port->x_char = 0;
 			port->icount.tx++;
-		} else if (!uart_tx_stopped(port) && compat_uart_xmit_peek(port, &ch)) {
+		} else if (uart_tx_stopped(port)) {
+			break;
+		} else if (up->addr_pending && !up->addr_after &&
+			   compat_uart_xmit_pending(port)) {
+			word = ts_uart_frame_encode_addr(up->addr_dest);
+			up->addr_pending = false;
+			port->icount.tx++;
+		} else if (compat_uart_xmit_peek(port, &ch)) {
 			word = ts_uart_frame_encode(&up->frame, ch);
 			uart_xmit_advance(port, 1);
+			if (up->addr_pending)
+				up->addr_after--;
 		} else {
 			break;
 		}
@@ -371,6 +416,12 @@ static unsigned int ts_uart_get_mctrl(struct uart_port *port)
 	return mctrl;
 }
 
+/* TCOFLUSH: what was queued before a pending address is gone; it goes first. */
+static void ts_uart_flush_buffer(struct uart_port *port)
+{
+	to_ts_uart(port)->addr_after = 0;
+}
+
 /* No transmit interrupt to disable: the FIFO just runs dry. */
 static void ts_uart_stop_tx(struct uart_port *port)
 {
@@ -462,6 +513,7 @@ static void ts_uart_shutdown(struct uart_port *port)
 	hrtimer_cancel(&up->rs485_timer);
 	uart_port_lock_irqsave(port, &flags);
 	up->ctrl &= ~TS7800_STAT_TXBRK;
+	up->addr_pending = false;	/* its transmission is gone */
 	if (up->rs485_sending)
 		ts_uart_rs485_idle(up);
 	else
@@ -512,13 +564,20 @@ static void ts_uart_set_termios(struct uart_port *port, struct ktermios *termios
 	unsigned int baud, code;
 	unsigned long flags;
 
-	/* 9-bit addressing (ADDRB) is not offered; CMSPAR carries the 9th bit. */
-	termios->c_cflag &= ~ADDRB;
 	baud = uart_get_baud_rate(port, termios, old, TS_UART_MIN_BAUD, TS_UART_MAX_BAUD);
 	code = ts_uart_baud_code(baud);
 	baud = ts7800_uart_rates[code].baud;
 
 	uart_port_lock_irqsave(port, &flags);
+	/*
+	 * ADDRB is switched by TIOCSRS485 only (ts_uart_rs485_config()); while
+	 * it is on, the character is 8 data bits and the address bit, and the
+	 * termios reported back says so.
+	 */
+	if (up->frame.addrb)
+		termios->c_cflag |= ADDRB;
+	else
+		termios->c_cflag &= ~ADDRB;
 	termios->c_cflag = ts_uart_frame_init(&up->frame, termios->c_cflag);
 	uart_update_timeout(port, termios->c_cflag, baud);
 	ts_uart_set_status_masks(port, termios->c_iflag);
@@ -543,6 +602,78 @@ static void ts_uart_set_termios(struct uart_port *port, struct ktermios *termios
 		tty_termios_encode_baud_rate(termios, baud, baud);
 }
 
+/* MODE9 and the character time after the character layout changed. */
+static void ts_uart_frame_apply(struct ts_uart *up, tcflag_t cflag)
+{
+	unsigned int code = FIELD_GET(TS7800_STAT_BAUD, up->ctrl);
+
+	if (ts_uart_frame_mode9(&up->frame))
+		up->ctrl |= TS7800_STAT_MODE9;
+	else
+		up->ctrl &= ~TS7800_STAT_MODE9;
+	if (code < TS7800_UART_NR_CODES)
+		uart_update_timeout(&up->port, cflag, ts7800_uart_rates[code].baud);
+	ts_uart_write_ctrl(up);
+}
+
+/*
+ * ADDRB part of TIOCSRS485 (port lock held). @termios is the tty's, or NULL
+ * when serial_core applies the port's stored setting again (then @rs485 is
+ * &port->rs485, and its destination address was sent already).
+ * Errors: -EINVAL if the character layout leaves no room for the address
+ * bit (parity, CS7, CSTOPB), -EBUSY if the last destination address still
+ * waits behind queued data.
+ */
+static int ts_uart_addrb_config(struct ts_uart *up, struct ktermios *termios,
+				struct serial_rs485 *rs485)
+{
+	struct uart_port *port = &up->port;
+	tcflag_t cflag = termios ? termios->c_cflag : CS8;
+	bool on = (rs485->flags & SER_RS485_ENABLED) && (rs485->flags & SER_RS485_ADDRB);
+	bool fits;
+	int recv;
+
+	if (!on) {
+		if (termios)
+			termios->c_cflag &= ~ADDRB;
+		up->addr_pending = false;
+		up->addr_recv = -1;
+		if (up->frame.addrb) {
+			ts_uart_frame_init(&up->frame, cflag & ~ADDRB);
+			ts_uart_frame_apply(up, cflag & ~ADDRB);
+		}
+		return 0;
+	}
+	/* No room for the address bit: refused, not a silent change of layout. */
+	if (up->frame.addrb)
+		fits = true;
+	else if (termios)
+		fits = !(cflag & (PARENB | CSTOPB)) && (cflag & CSIZE) == CS8;
+	else
+		fits = up->frame.hw_bits == 8 && up->frame.data_bits == 8;
+	if (!fits)
+		return -EINVAL;
+	if ((rs485->flags & SER_RS485_ADDR_DEST) && rs485 != &port->rs485) {
+		if (up->addr_pending && up->addr_after)
+			return -EBUSY;
+		up->addr_pending = true;
+		up->addr_dest = rs485->addr_dest;
+		up->addr_after = compat_uart_xmit_ready(port) ? compat_uart_xmit_pending(port) : 0;
+	}
+	recv = (rs485->flags & SER_RS485_ADDR_RECV) ? rs485->addr_recv : -1;
+	if (up->addr_recv != recv)
+		up->rx_match = false;	/* nothing passes before its address */
+	up->addr_recv = recv;
+	if (termios)
+		termios->c_cflag |= ADDRB;
+	if (!up->frame.addrb) {
+		up->rx_match = false;
+		ts_uart_frame_init(&up->frame, cflag | ADDRB);
+		ts_uart_frame_apply(up, CS8 | ADDRB);
+	}
+	return 0;
+}
+
 /*
  * Called with the port lock held (or before the port is up). RTS drives
  * the transceiver: put it at the idle level of the new setting, or give it
@@ -554,14 +685,18 @@ static int ts_uart_rs485_config(struct uart_port *port, struct ktermios *termios
 				struct serial_rs485 *rs485)
 {
 	struct ts_uart *up = to_ts_uart(port);
+	int ret;
 
+	ret = ts_uart_addrb_config(up, termios, rs485);
+	if (ret)
+		return ret;
 	if (!(rs485->flags & SER_RS485_ENABLED)) {
 		up->rs485_sending = false;
 		return 0;
 	}
 	rs485->flags |= SER_RS485_RX_DURING_TX;
-	up->rs485_sending = false;
-	ts_uart_set_rts(up, rs485->flags & SER_RS485_RTS_AFTER_SEND);
+	if (!up->rs485_sending)
+		ts_uart_set_rts(up, rs485->flags & SER_RS485_RTS_AFTER_SEND);
 	return 0;
 }
 
@@ -596,6 +731,7 @@ static const struct uart_ops ts_uart_ops = {
 	.tx_empty	= ts_uart_tx_empty,
 	.set_mctrl	= ts_uart_set_mctrl,
 	.get_mctrl	= ts_uart_get_mctrl,
+	.flush_buffer	= ts_uart_flush_buffer,
 	.stop_tx	= ts_uart_stop_tx,
 	.start_tx	= ts_uart_start_tx,
 	.stop_rx	= ts_uart_stop_rx,
@@ -660,7 +796,10 @@ static int ts_uart_probe(struct platform_device *pdev)
 	port->has_sysrq = IS_ENABLED(CONFIG_SERIAL_CORE_CONSOLE);
 	port->rs485_config = ts_uart_rs485_config;
 	port->rs485_supported.flags = SER_RS485_ENABLED | SER_RS485_RTS_ON_SEND |
-				      SER_RS485_RTS_AFTER_SEND | SER_RS485_RX_DURING_TX;
+				      SER_RS485_RTS_AFTER_SEND | SER_RS485_RX_DURING_TX |
+				      SER_RS485_ADDRB | SER_RS485_ADDR_DEST |
+				      SER_RS485_ADDR_RECV;
+	up->addr_recv = -1;
 	hrtimer_init(&up->rs485_timer, CLOCK_MONOTONIC, HRTIMER_MODE_REL);
 	up->rs485_timer.function = ts_uart_rs485_poll;
 

@@ -61,6 +61,16 @@ static inline int wire_stats(int wfd, struct ts7800_sim_wire_stats *st)
 }
 
 /* 1: the UART also receives what it transmits (a 2-wire bus), 0: not. */
+static inline int wire_reset_stats(int wfd)
+{
+	return ioctl(wfd, TS7800_SIM_RESET_STATS);
+}
+
+static inline int wire_gaps(int wfd, struct ts7800_sim_line_gaps *g)
+{
+	return ioctl(wfd, TS7800_SIM_GET_GAPS, g);
+}
+
 static inline int wire_set_echo(int wfd, int on)
 {
 	uint32_t v = on;

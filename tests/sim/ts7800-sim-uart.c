@@ -107,11 +107,45 @@ void sim_uart_log(struct sim_uart *u, u16 w, ktime_t t, u8 dir)
 		u->log_dropped++;
 }
 
-/* A character (or break) arrived completely at u's receiver at time t. */
-static void sim_rx_complete(struct sim_uart *u, u16 w, ktime_t t)
+/*
+ * TS7800_SIM_GET_GAPS: a character of direction @dir ended on u's line at
+ * @t; the idle line before it (sim->lock held). A pause of the line for a
+ * stalled simulator (sim_next_slot()) since the last character is not idle
+ * line: the character was due when the pause began.
+ */
+static void sim_line_gap(struct sim_uart *u, u16 w, ktime_t t, u8 dir)
+{
+	struct ts7800_sim_line_gaps *g = &u->gaps;
+	ktime_t start = ktime_sub_ns(t, u->stats.char_ns);
+	u64 idle = 0;
+
+	if (u->line_end && ktime_after(start, u->line_end))
+		idle = ktime_to_ns(ktime_sub(start, u->line_end));
+	idle = idle > u->line_stall_ns ? idle - u->line_stall_ns : 0;
+	u->line_stall_ns = 0;
+	if (ktime_after(t, u->line_end))
+		u->line_end = t;
+	if (w & TS7800_SIM_WORD_BIT9) {
+		g->frames[dir]++;
+		g->frame_idle_ns[dir] += idle;
+		g->frame_idle_max_ns[dir] = max(g->frame_idle_max_ns[dir], idle);
+	} else {
+		g->chars[dir]++;
+		g->char_idle_ns[dir] += idle;
+		g->char_idle_max_ns[dir] = max(g->char_idle_max_ns[dir], idle);
+	}
+}
+
+/*
+ * A character (or break) arrived completely at u's receiver at time t;
+ * @echo: it is u's own, heard back (already counted on the line).
+ */
+static void sim_rx_complete(struct sim_uart *u, u16 w, ktime_t t, bool echo)
 {
 	u16 entry;
 
+	if (!echo)
+		sim_line_gap(u, w, t, TS7800_SIM_LOG_RX);
 	if (!sim_apply_fault(u, &u->rx_fault, &w))
 		return;
 	sim_uart_log(u, w, t, TS7800_SIM_LOG_RX);
@@ -139,6 +173,7 @@ static void sim_tx_deliver(struct sim_uart *u, u16 w, ktime_t t)
 
 	if (!sim_apply_fault(u, &u->tx_fault, &w))
 		return;
+	sim_line_gap(u, w, t, TS7800_SIM_LOG_TX);
 	sim_uart_log(u, w, t, TS7800_SIM_LOG_TX);
 	u->stats.to_wire++;
 	u->stats.to_wire_last_ns = ktime_to_ns(t);
@@ -150,11 +185,11 @@ static void sim_tx_deliver(struct sim_uart *u, u16 w, ktime_t t)
 	/* MODEL: a cross-connected peer gets the character as sent, at any rate. */
 	if (u->peer >= 0) {
 		peer = &u->sim->uart[u->peer];
-		sim_rx_complete(peer, w, t);
+		sim_rx_complete(peer, w, t, false);
 	}
 	/* MODEL: a 2-wire transceiver with its receiver on hears the line. */
 	if (u->echo)
-		sim_rx_complete(u, w, t);
+		sim_rx_complete(u, w, t, true);
 }
 
 static ktime_t sim_start_time(ktime_t line_free)
@@ -184,13 +219,17 @@ static unsigned int sim_slice_chars(struct sim_uart *u, u64 ns)
  * End of the next slice after one that ended at @done: back to back, unless
  * the simulator ran more than a slice late (see the top of this file).
  */
-static ktime_t sim_next_slot(ktime_t done, ktime_t now, u64 slice_ns, __u64 *stall_ns)
+static ktime_t sim_next_slot(struct sim_uart *u, ktime_t done, ktime_t now, u64 slice_ns,
+			     __u64 *stall_ns)
 {
 	ktime_t next = ktime_add_ns(done, slice_ns);
+	u64 stall;
 
 	if (ktime_after(next, now))
 		return next;
-	*stall_ns += ktime_to_ns(ktime_sub(now, done));
+	stall = ktime_to_ns(ktime_sub(now, done));
+	*stall_ns += stall;
+	u->line_stall_ns += stall;	/* not idle line (sim_line_gap()) */
 	return ktime_add_ns(now, slice_ns);
 }
 
@@ -233,7 +272,7 @@ static enum hrtimer_restart sim_rx_timer(struct hrtimer *t)
 	spin_lock_irqsave(&u->sim->lock, flags);
 	ns = u->stats.char_ns;
 	for (i = u->rx_nslice; i > 0 && kfifo_get(&u->line_in, &w); i--)
-		sim_rx_complete(u, w, ktime_sub_ns(done, (i - 1) * ns));
+		sim_rx_complete(u, w, ktime_sub_ns(done, (i - 1) * ns), false);
 	u->rx_line_free = done;
 	if (kfifo_avail(&u->line_in) >= SIM_WIRE_WAKE_ROOM || kfifo_is_empty(&u->line_in))
 		wake_up_interruptible(&u->wait_in);
@@ -242,7 +281,7 @@ static enum hrtimer_restart sim_rx_timer(struct hrtimer *t)
 	if (!slice_ns) {
 		u->rx_busy = false;
 	} else {
-		hrtimer_set_expires(t, sim_next_slot(done, ktime_get(), slice_ns,
+		hrtimer_set_expires(t, sim_next_slot(u, done, ktime_get(), slice_ns,
 						     &u->stats.from_wire_stall_ns));
 		ret = HRTIMER_RESTART;
 	}
@@ -324,7 +363,7 @@ static enum hrtimer_restart sim_tx_timer(struct hrtimer *t)
 		/* The line went idle: the far end sees everything now. */
 		wake_up_interruptible(&u->wait_out);
 	} else {
-		hrtimer_set_expires(t, sim_next_slot(done, ktime_get(), slice_ns,
+		hrtimer_set_expires(t, sim_next_slot(u, done, ktime_get(), slice_ns,
 						     &u->stats.to_wire_stall_ns));
 		ret = HRTIMER_RESTART;
 	}

@@ -203,6 +203,7 @@ static long wire_ioctl(struct file *file, unsigned int cmd, unsigned long arg)
 	struct sim_uart *u = wire_uart(file);
 	struct ts7800_sim *sim = u->sim;
 	struct ts7800_sim_wire_stats st;
+	struct ts7800_sim_line_gaps gaps;
 	unsigned long flags;
 	u32 level;
 
@@ -216,8 +217,16 @@ static long wire_ioctl(struct file *file, unsigned int cmd, unsigned long arg)
 	case TS7800_SIM_RESET_STATS:
 		spin_lock_irqsave(&sim->lock, flags);
 		memset(&u->stats, 0, offsetof(struct ts7800_sim_wire_stats, char_ns));
+		memset(&u->gaps, 0, sizeof(u->gaps));
+		u->line_end = 0;
+		u->line_stall_ns = 0;
 		spin_unlock_irqrestore(&sim->lock, flags);
 		return 0;
+	case TS7800_SIM_GET_GAPS:
+		spin_lock_irqsave(&sim->lock, flags);
+		gaps = u->gaps;
+		spin_unlock_irqrestore(&sim->lock, flags);
+		return copy_to_user((void __user *)arg, &gaps, sizeof(gaps)) ? -EFAULT : 0;
 	case TS7800_SIM_SET_CTS:
 		if (get_user(level, (u32 __user *)arg))
 			return -EFAULT;

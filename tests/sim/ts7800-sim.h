@@ -99,6 +99,13 @@ struct sim_uart {
 	struct sim_fault rx_fault;
 	struct sim_fault tx_fault;
 	struct ts7800_sim_wire_stats stats;
+	/*
+	 * TS7800_SIM_GET_GAPS; line_end: end of the last character, 0 = none;
+	 * line_stall_ns: the line paused for a stalled simulator since then
+	 */
+	struct ts7800_sim_line_gaps gaps;
+	ktime_t line_end;
+	u64 line_stall_ns;
 	struct sim_knob knobs[SIM_NR_KNOBS];
 
 	struct miscdevice misc;

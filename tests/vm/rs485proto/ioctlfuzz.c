@@ -23,7 +23,8 @@ _Static_assert(offsetof(struct n_rs485_xfer, timeout_us) == 520, "n_rs485_xfer l
 _Static_assert(offsetof(struct n_rs485_xfer, attempts) == 532, "n_rs485_xfer layout");
 _Static_assert(sizeof(struct n_rs485_config) == 32, "n_rs485_config layout");
 _Static_assert(offsetof(struct n_rs485_config, flags) == 16, "n_rs485_config layout");
-_Static_assert(sizeof(struct n_rs485_stats) == 18 * 8, "n_rs485_stats layout");
+_Static_assert(sizeof(struct n_rs485_stats) == 22 * 8, "n_rs485_stats layout");
+_Static_assert(offsetof(struct n_rs485_stats, tx_path) == 18 * 8, "n_rs485_stats layout");
 _Static_assert(offsetof(struct n_rs485_stats, collisions) == 17 * 8, "n_rs485_stats layout");
 _Static_assert(sizeof(struct n_rs485_node) == 8, "n_rs485_node layout");
 

@@ -27,6 +27,11 @@
 #include "vmtest.h"
 #include "ts7800-wire.h"
 
+/* termios 9-bit addressing (6.0+); glibc's <termios.h> does not have it */
+#ifndef ADDRB
+#define ADDRB		0x20000000	/* include/uapi/asm-generic/termbits-common.h */
+#endif
+
 #define SLAVE_ADDR	0x10
 #define OTHER_ADDR	0x11
 
@@ -96,6 +101,22 @@ static inline void sim_unload(void)
 	sh("modprobe -r n_rs485");
 	sh("modprobe -r ts7800_sim");
 	sh("modprobe -r ts_uart ts7800_fpga");
+}
+
+/* NAME=N on the kernel command line (VMTEST_APPEND=NAME=N), else @def. */
+static inline unsigned long cmdline_ulong(const char *name, unsigned long def)
+{
+	char buf[4096], key[64];
+	FILE *f = fopen("/proc/cmdline", "r");
+	char *p = NULL;
+
+	snprintf(key, sizeof(key), " %s=", name);
+	buf[0] = ' ';
+	if (f && fgets(buf + 1, sizeof(buf) - 1, f))
+		p = strstr(buf, key);
+	if (f)
+		fclose(f);
+	return p ? strtoul(p + strlen(key), NULL, 10) : def;
 }
 
 /* Open /dev/ttyTSU<port> and attach the discipline; returns the fd or -1. */

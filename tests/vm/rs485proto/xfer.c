@@ -33,6 +33,7 @@ int main(void)
 {
 	struct termios before, during, after;
 	struct n_rs485_stats st;
+	tcflag_t ninth;
 	struct n_rs485_xfer x;
 	struct n_rs485_node node;
 	struct slave s;
@@ -51,11 +52,16 @@ int main(void)
 	tap_ok(ioctl(fd, TIOCSETD, &ld) == 0, "TIOCSETD 29 attaches (module autoloaded)");
 	ld = 0;
 	tap_ok(ioctl(fd, TIOCGETD, &ld) == 0 && ld == N_RS485_DEFAULT_LDISC, "TIOCGETD says 29");
+	/* the 9th bit: space parity, or on the addressing path ADDRB without parity */
+	memset(&st, 0, sizeof(st));
+	get_stats(fd, &st);
+	ninth = st.tx_path == N_RS485_PATH_ADDRB ? ADDRB : PARENB | CMSPAR;
 	tap_ok(tcgetattr(fd, &during) == 0 &&
-	       (during.c_cflag & (CSIZE | PARENB | CMSPAR | PARODD)) == (CS8 | PARENB | CMSPAR) &&
+	       (during.c_cflag & (CSIZE | PARENB | CMSPAR | PARODD | ADDRB)) == (CS8 | ninth) &&
 	       (during.c_iflag & INPCK) && !(during.c_iflag & IGNPAR) &&
 	       cfgetospeed(&during) == B115200,
-	       "attach sets 115200 Bd, CS8, space parity, INPCK, no IGNPAR (tcgetattr works)");
+	       "attach sets 115200 Bd, CS8, %s, INPCK, no IGNPAR (tcgetattr works)",
+	       st.tx_path == N_RS485_PATH_ADDRB ? "ADDRB (addressing path)" : "space parity");
 	if (slave_start(&s, PORT))
 		tap_bail("slave on the wire");
 

@@ -123,6 +123,35 @@ struct n_rs485_stats {
 	__u64 events_dropped;		/* frames dropped: event queue full */
 	__u64 unexpected;		/* non-event frames no transaction waited for */
 	__u64 collisions;		/* N_RS485_CFG_ECHO: attempts whose echo differed */
+	/*
+	 * Since issue 20. A program built with the fields above only (144
+	 * bytes) still gets them: the ioctl number carries the size it asks for.
+	 */
+	__u64 tx_path;			/* enum n_rs485_tx_path, chosen at attach */
+	__u64 termios_switches;		/* tty_set_termios() calls for sending frames */
+	__u64 drains;			/* waits for the transmitter to empty after a write */
+	__u64 addr_drains;		/* ...of them between an address and its data */
+};
+
+/*
+ * n_rs485_stats.tx_path: how the 9th bit is sent. The discipline takes
+ * N_RS485_PATH_ADDRB at attach on a serial_core port that offers
+ * SER_RS485_ADDRB (mainline's 9-bit addressing, e.g. the TS-UART), unless
+ * the module parameter addrb=0 says not to, and N_RS485_PATH_PARITY on every
+ * other UART with mark/space parity (CMSPAR).
+ */
+enum n_rs485_tx_path {
+	/*
+	 * Address in mark parity, data in space parity: per frame two
+	 * termios switches and two drains, one between address and data.
+	 */
+	N_RS485_PATH_PARITY = 0,
+	/*
+	 * SER_RS485_ADDR_DEST puts the address before the data in the UART's
+	 * queue: no termios switch, one drain per frame (after it, to start the
+	 * response timeout when the request has left the line).
+	 */
+	N_RS485_PATH_ADDRB = 1,
 };
 
 /* Per-node error counter (N_RS485_IOC_GET_NODE / N_RS485_IOC_RESET_NODE) */

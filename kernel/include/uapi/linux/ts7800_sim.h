@@ -126,4 +126,30 @@ struct ts7800_sim_log_read {
 /* Non-blocking: copies what the log holds (count may be 0). */
 #define TS7800_SIM_READ_LOG	_IOWR(TS7800_SIM_IOC_MAGIC, 6, struct ts7800_sim_log_read)
 
+/*
+ * Idle line time (TS7800_SIM_GET_GAPS), in the model's line time: for every
+ * character on this port's line, the time the line was idle before its
+ * start bit (its end less its character time) since the end of the previous
+ * character in either direction, 0 if they overlap. Summed per direction
+ * (index TS7800_SIM_LOG_TX or _RX) and separately for address characters
+ * (9th bit 1: the first character of a 9-bit frame) and for all others
+ * (the rest of a frame, 8-bit traffic, breaks). A frame's idle time is the
+ * gap between frames on the line, a character's the gap inside one. A
+ * pause of the line because the simulator itself ran late (see
+ * to_wire_stall_ns) is not idle time. The
+ * echo of TS7800_SIM_SET_ECHO is the transmitted character itself and is not
+ * counted again. Zeroed by TS7800_SIM_RESET_STATS; the first character after
+ * it has no predecessor and counts no idle time.
+ */
+struct ts7800_sim_line_gaps {
+	__u64 frames[2];		/* address characters */
+	__u64 frame_idle_ns[2];		/* idle line before them */
+	__u64 frame_idle_max_ns[2];	/* the longest of those */
+	__u64 chars[2];			/* the other characters */
+	__u64 char_idle_ns[2];		/* idle line before them */
+	__u64 char_idle_max_ns[2];	/* the longest of those */
+};
+
+#define TS7800_SIM_GET_GAPS	_IOR(TS7800_SIM_IOC_MAGIC, 7, struct ts7800_sim_line_gaps)
+
 #endif /* _UAPI_LINUX_TS7800_SIM_H */
