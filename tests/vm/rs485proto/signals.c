@@ -94,18 +94,14 @@ static unsigned int xfers_from_env(void)
 }
 
 /* The child: n transactions, the tally to @out. */
-static void child_run(int fd, enum mode m, unsigned int n, int out)
+static void child_run(int fd, unsigned int n, int out)
 {
-	struct sigaction sa = { .sa_handler = on_usr1 };
 	struct tally t = { 0 };
 	struct n_rs485_xfer x;
 	unsigned int i;
 	double t0 = now_s();
 	int ret;
 
-	sigemptyset(&sa.sa_mask);
-	sa.sa_flags = m == M_NORESTART ? 0 : SA_RESTART;
-	sigaction(SIGUSR1, &sa, NULL);
 	for (i = 0; i < n; i++) {
 		ret = xfer(fd, &x, SLAVE_ADDR, I_COUNT, 0, NULL, 0, XFER_TIMEOUT_US, 0);
 		if (ret == 0 && x.status == N_RS485_OK)
@@ -156,11 +152,12 @@ static void *hog_main(void *arg)
 	return NULL;
 }
 
-/* One disturbance of the child; returns 1 if it was delivered. */
-static int disturb(pid_t pid, enum mode m, unsigned int max_us)
+/*
+ * One disturbance of the child; returns 1 if it was delivered, 0 if not,
+ * -1 if the child ended meanwhile and this reaped it (its status in @st).
+ */
+static int disturb(pid_t pid, enum mode m, unsigned int max_us, int *st)
 {
-	int st;
-
 	switch (m) {
 	case M_RESTART:
 	case M_NORESTART:
@@ -174,8 +171,10 @@ static int disturb(pid_t pid, enum mode m, unsigned int max_us)
 	case M_PTRACE:
 		if (ptrace(PTRACE_ATTACH, pid, NULL, NULL))
 			return 0;
-		if (waitpid(pid, &st, __WALL) != pid || !WIFSTOPPED(st))
-			return 0;	/* it ended meanwhile */
+		if (waitpid(pid, st, __WALL) != pid)
+			return 0;
+		if (!WIFSTOPPED(*st))
+			return -1;
 		ptrace(PTRACE_DETACH, pid, NULL, NULL);
 		return 1;
 	default:
@@ -199,6 +198,7 @@ static void run_mode(int fd, struct slave *s, enum mode m, unsigned int n, unsig
 {
 	unsigned int e0 = s->executions[I_COUNT], executed, sent = 0, delivered = 0;
 	struct n_rs485_xfer x;
+	struct sigaction sa = { .sa_handler = on_usr1 };
 	struct tally t = { 0 };
 	int pfd[2], st;
 	pid_t pid;
@@ -206,20 +206,35 @@ static void run_mode(int fd, struct slave *s, enum mode m, unsigned int n, unsig
 
 	if (pipe(pfd))
 		tap_bail("pipe");
+	/*
+	 * The child inherits the handler: installed by the child itself, a
+	 * SIGUSR1 sent before it got that far would kill it (the default
+	 * action), which a slow fork under load made happen on CI.
+	 */
+	sigemptyset(&sa.sa_mask);
+	sa.sa_flags = m == M_NORESTART ? 0 : SA_RESTART;
+	if (sigaction(SIGUSR1, &sa, NULL))
+		tap_bail("sigaction");
+	handled = 0;
 	pid = fork();
 	if (pid < 0)
 		tap_bail("fork");
 	if (!pid) {
 		close(pfd[0]);
-		child_run(fd, m, n, pfd[1]);
+		child_run(fd, n, pfd[1]);
 	}
 	close(pfd[1]);
 	for (;;) {
+		int ret;
+
 		pause_random(max_us);
 		if (waitpid(pid, &st, WNOHANG) == pid)
 			break;
 		sent++;
-		delivered += disturb(pid, m, max_us);
+		ret = disturb(pid, m, max_us, &st);
+		if (ret < 0)
+			break;	/* reaped by the ptrace wait: polling again would never end */
+		delivered += ret;
 	}
 	r = read(pfd[0], &t, sizeof(t));
 	close(pfd[0]);
@@ -232,7 +247,9 @@ static void run_mode(int fd, struct slave *s, enum mode m, unsigned int n, unsig
 		 mode_name[m], n, t.seconds, t.ok, t.timeout, t.eintr, t.other, t.last_errno, sent,
 		 delivered, t.signals, executed);
 	if (r != sizeof(t) || !WIFEXITED(st) || WEXITSTATUS(st)) {
-		tap_ok(0, "%s: the child finished its %u transactions", mode_name[m], n);
+		tap_ok(0, "%s: the child finished its %u transactions (%s %d)", mode_name[m], n,
+		       WIFSIGNALED(st) ? "killed by signal" : "exit status",
+		       WIFSIGNALED(st) ? WTERMSIG(st) : WEXITSTATUS(st));
 		return;
 	}
 	tap_ok(t.other == 0 && t.ok + t.timeout + t.eintr == n,
