@@ -14,7 +14,7 @@ tap_diag "modules staged for ${kver:-nothing}"
 tap_ok "the staging tree matches the list in docs/install.md" \
 	"$VMTEST_REPO/scripts/install-manifest.sh" "$DEST" "$kver"
 
-test_only=$(cd "$DEST" && find . -name 'vmtest_echo.ko' -o -name 'ts7800-sim.ko')
+test_only=$(cd "$DEST" && find . -name 'vmtest_*.ko' -o -name 'ts7800-sim.ko')
 tap_is "no test-only module installed" "$test_only" ""
 kos=$(ls "$DEST/lib/modules/$kver/extra/"*.ko 2>/dev/null)
 wrong=$(for k in $kos; do v=$(modinfo -F vermagic "$k" | awk '{ print $1 }'); [ "$v" = "$kver" ] || echo "${k##*/}:$v"; done)
