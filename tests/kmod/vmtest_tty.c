@@ -25,6 +25,8 @@
 #include <linux/tty_driver.h>
 #include <linux/uaccess.h>
 
+#include <compat/tty_driver_write.h>
+
 #define VT_SENT_SIZE	4096
 
 static struct tty_driver *vt_driver;
@@ -54,13 +56,14 @@ static unsigned int vt_room_locked(void)
 	return min_t(unsigned int, vt_room, kfifo_avail(&vt_sent));
 }
 
-static int vt_write(struct tty_struct *tty, const unsigned char *buf, int count)
+static TTY_DRIVER_WRITE_RET vt_write(struct tty_struct *tty, const u8 *buf,
+				     TTY_DRIVER_WRITE_COUNT count)
 {
 	unsigned long flags;
 	unsigned int n;
 
 	spin_lock_irqsave(&vt_lock, flags);
-	n = kfifo_in(&vt_sent, buf, min_t(unsigned int, count, vt_room_locked()));
+	n = kfifo_in(&vt_sent, buf, min_t(size_t, count, vt_room_locked()));
 	vt_room -= n;
 	if (count && !n)
 		vt_starved++;
