@@ -236,7 +236,7 @@ static void run_n_rs485(struct result *r, int wfd, int addrb, unsigned int want_
 	struct n_rs485_stats st;
 	struct n_rs485_xfer x;
 	double t0, t;
-	int fd;
+	int fd, ret;
 
 	if (sh("echo %d > /sys/module/n_rs485/parameters/addrb", addrb))
 		tap_bail("n_rs485 parameter addrb");
@@ -248,9 +248,12 @@ static void run_n_rs485(struct result *r, int wfd, int addrb, unsigned int want_
 	pass_start(r, wfd, &t0);
 	while (now_s() - t0 < SECONDS && r->n < MAX_SAMPLES) {
 		t = now_s();
-		if (xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, REQ_DATA, 100000, 0) ||
-		    x.status != N_RS485_OK || memcmp(x.resp.data, data, REQ_DATA)) {
-			r->failed++;
+		ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, REQ_DATA, 100000, 0);
+		if (ret || x.status != N_RS485_OK || memcmp(x.resp.data, data, REQ_DATA)) {
+			if (!r->failed++)
+				tap_diag("%s: transaction %u failed after %.1f ms: ioctl %d, status %u, attempts %u",
+					 r->name, r->n, (now_s() - t) * 1e3, ret, x.status,
+					 x.attempts);
 			continue;
 		}
 		lat[r->n++] = now_s() - t;

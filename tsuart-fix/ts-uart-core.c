@@ -163,18 +163,23 @@ static void ts_uart_rs485_idle(struct ts_uart *up)
 	ts_uart_set_rts(up, port->rs485.flags & SER_RS485_RTS_AFTER_SEND);
 }
 
-/* One character time: how long until TRE is worth reading again. */
-static ktime_t ts_uart_rs485_period(struct uart_port *port)
+/* @chars character times (at least one): when TRE is worth reading again. */
+static ktime_t ts_uart_rs485_period(struct uart_port *port, unsigned int chars)
 {
-	return ns_to_ktime(max_t(u64, READ_ONCE(port->frame_time), NSEC_PER_USEC));
+	return ns_to_ktime(max_t(u64, READ_ONCE(port->frame_time), NSEC_PER_USEC) *
+			   max(chars, 1U));
 }
 
 /*
  * Nothing more to send: release the line when the stop bit of the last
- * character is out, else look again one character time later (the TS-UART
- * has no "transmitter idle" interrupt).
+ * character is out, else look again later (the TS-UART has no "transmitter
+ * idle" interrupt): first after the time of the @written characters just
+ * put into the FIFO less the one that may be on the line already, at the
+ * earliest the line can be idle, then every character time. Reading TRE
+ * every character time from the start cost a timer interrupt and a STAT
+ * read per character of every RS-485 transmission.
  */
-static void ts_uart_rs485_done(struct ts_uart *up, unsigned int stat)
+static void ts_uart_rs485_done(struct ts_uart *up, unsigned int stat, unsigned int written)
 {
 	struct uart_port *port = &up->port;
 
@@ -184,7 +189,7 @@ static void ts_uart_rs485_done(struct ts_uart *up, unsigned int stat)
 		ts_uart_rs485_idle(up);
 	else if (!hrtimer_active(&up->rs485_timer))
 		hrtimer_start(&up->rs485_timer,
-			      ts_uart_rs485_period(port),
+			      ts_uart_rs485_period(port, written ? written - 1 : 1),
 			      HRTIMER_MODE_REL);
 }
 
@@ -202,7 +207,7 @@ static enum hrtimer_restart ts_uart_rs485_poll(struct hrtimer *t)
 			if (!compat_uart_xmit_pending(port))
 				ts_uart_rs485_idle(up);
 		} else {
-			hrtimer_forward_now(t, ts_uart_rs485_period(port));
+			hrtimer_forward_now(t, ts_uart_rs485_period(port, 1));
 			again = HRTIMER_RESTART;
 		}
 	}
@@ -289,7 +294,7 @@ static void ts_uart_rx_char(struct ts_uart *up, unsigned int stat)
 static bool ts_uart_tx_chars(struct ts_uart *up, unsigned int *stat)
 {
 	struct uart_port *port = &up->port;
-	bool sent = false;
+	unsigned int written = 0;
 	u16 word;
 	u8 ch;
 
@@ -319,14 +324,14 @@ static bool ts_uart_tx_chars(struct ts_uart *up, unsigned int *stat)
 		ts_uart_rs485_start(up);
 		if (regmap_write(up->map, up->data_reg, word))
 			break;
-		sent = true;
+		written++;
 		if (ts_uart_read_stat(up, stat))
 			break;
 	}
 	if (compat_uart_xmit_pending(port) < WAKEUP_CHARS)
 		uart_write_wakeup(port);
-	ts_uart_rs485_done(up, *stat);
-	return sent;
+	ts_uart_rs485_done(up, *stat, written);
+	return written > 0;
 }
 
 /*

@@ -33,12 +33,17 @@ static unsigned int run_xfers(int fd)
 	uint8_t data[8] = { 1, 2, 3, 4, 5, 6, 7, 8 };
 	struct n_rs485_xfer x;
 	unsigned int i, bad = 0;
+	int ret;
 
 	for (i = 0; i < xfers; i++) {
 		data[0] = i;
-		if (xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 8, 300000, 0) ||
-		    x.status != N_RS485_OK || x.resp.len != 8 || memcmp(x.resp.data, data, 8))
-			bad++;
+		ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 8, 300000, 0);
+		if (ret || x.status != N_RS485_OK || x.resp.len != 8 ||
+		    memcmp(x.resp.data, data, 8)) {
+			if (!bad++)
+				tap_diag("transaction %u failed: ioctl %d, status %u, attempts %u, response length %u",
+					 i, ret, x.status, x.attempts, x.resp.len);
+		}
 	}
 	return bad;
 }
