@@ -14,7 +14,9 @@
 #      linux-source-6.12, extracted at build time) reports no error, warning
 #      or check; the version checks of kernel/include/compat/ (one header
 #      per API that differs between the kernels) are the only ones allowed;
-#   3. sparse (make C=2) reports nothing, on each amd64 kernel.
+#   3. sparse (make C=2) reports nothing, on each amd64 kernel;
+#   4. one access width on the FPGA window (scripts/fpga-access-width.sh):
+#      no MMIO accessor in the FPGA drivers but those on the SoC's doorbell.
 # Each gate is one row of build/results/gates.tsv; exit 1 if any fails.
 set -uo pipefail
 . "$(dirname "$0")/lib.sh"
@@ -100,4 +102,11 @@ for t in $amd64_targets; do
 		row "sparse (C=2), $t" fail "sparse run failed ($slog)"
 	fi
 done
+
+# 4. the FPGA window only through its 16-bit regmap
+if "$TOP/scripts/fpga-access-width.sh"; then
+	row "FPGA window: 16-bit regmap only" ok
+else
+	row "FPGA window: 16-bit regmap only" fail "MMIO accessors on the FPGA window (above)"
+fi
 exit $failed
