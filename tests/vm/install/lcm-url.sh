@@ -29,7 +29,7 @@ bg() { "$@" & PIDS="$! $PIDS"; LAST=$!; }
 
 units="advee-watchdog.service driver_aux.service driver_canbus.service driver_power.service driver_rs485@.service"
 tap_plan $((5 + $(echo $units | wc -w) + 7))
-tap_stage_install "staging install" --modules none
+tap_here "staging install" stage_install --modules none
 conf=$DEST/etc/advee/lcm.conf
 url=$(sed -n 's/^LCM_DEFAULT_URL=//p' "$conf" 2>/dev/null)
 tap_diag "installed URL: $url"

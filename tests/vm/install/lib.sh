@@ -39,17 +39,18 @@ stage_install() {
 	"$VMTEST_REPO/scripts/install.sh" --destdir "$DEST" "$@"
 }
 
-# tap_stage_install DESC [ARGS]: stage_install as a TAP point, its output as
-# diagnostics when it fails. Not through tap_ok, whose $(...) is a subshell:
-# the overlay stage_install mounts must be recorded in this shell's MOUNTS
-# for cleanup_mounts, or it stays mounted under the next program (two left
-# over made the third overlay mount on the build directory fail).
-tap_stage_install() {
+# tap_here DESC CMD [ARGS]: CMD as a TAP point run in this shell, its output
+# as diagnostics when it fails. Not through tap_ok, whose $(...) is a
+# subshell: the overlays stage_install and make_live mount must be recorded
+# in this shell's MOUNTS for cleanup_mounts, or they stay mounted under the
+# next program (two left over made the third overlay mount on the build
+# directory fail).
+tap_here() {
 	local desc=$1 rc
 	shift
-	stage_install "$@" >"$VMTEST_SCRATCH/stage_install.log" 2>&1
+	"$@" >"$VMTEST_SCRATCH/tap_here.log" 2>&1
 	rc=$?
-	[ "$rc" = 0 ] || sed 's/^/# /' "$VMTEST_SCRATCH/stage_install.log"
+	[ "$rc" = 0 ] || sed 's/^/# /' "$VMTEST_SCRATCH/tap_here.log"
 	tap_result "$rc" "$desc"
 }
 

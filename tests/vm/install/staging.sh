@@ -8,7 +8,7 @@
 trap cleanup_mounts EXIT
 
 tap_plan 5
-tap_stage_install "staging install (userland, system files, docs, modules)" --modules kmod
+tap_here "staging install (userland, system files, docs, modules)" stage_install --modules kmod
 kver=$(ls "$DEST/lib/modules" 2>/dev/null | head -1)
 tap_diag "modules staged for ${kver:-nothing}"
 tap_ok "the staging tree matches the list in docs/install.md" \

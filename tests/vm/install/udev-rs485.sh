@@ -15,7 +15,7 @@ trap cleanup EXIT
 
 tap_plan 13
 tap_ok "staging install (system files)" stage_system
-tap_ok "group advee created by the installed sysusers.d file, rules in place" make_live
+tap_here "group advee created by the installed sysusers.d file, rules in place" make_live
 gid=$(getent group advee | cut -d: -f3)
 tap_diag "advee gid: ${gid:-none}; udevd running: $(pgrep -x systemd-udevd >/dev/null && echo yes || echo no)"
 
