@@ -159,18 +159,24 @@ static void sim_update_line(struct ts_can1_sim *sim)
 {
 	struct sim_sja *s = &sim->sja;
 	bool level = sim->line && (s->ir & s->ier);
+	unsigned long flags;
 
 	if (level == sim->level)
 		return;
 	sim->level = level;
-	raw_spin_lock(&sim->irq_lock);
+	/*
+	 * irqsave: under PREEMPT_RT sim->lock leaves interrupts on, and the
+	 * hard irq_work queued here would interrupt us on this CPU and spin on
+	 * irq_lock (a hung guest in tscan1/lifecycle on 6.12-rt).
+	 */
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
 	if (level)
 		sim->irq_level |= BIT(sim->line);
 	else
 		sim->irq_level &= ~BIT(sim->line);
 	if (level && (sim->irq_enable & BIT(sim->line)))
 		irq_work_queue(&sim->irq_work);
-	raw_spin_unlock(&sim->irq_lock);
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 }
 
 static void sim_irq_mask(struct irq_data *d)

@@ -84,7 +84,8 @@ static unsigned long sim_irq_pending(struct ts7800_sim *sim)
 /*
  * Deliver every pending source. Only from hard irq context with no model
  * lock held: the simulator's own timers (directly, saving an IPI per
- * character) and the irq_work below.
+ * character; on PREEMPT_RT they run in the softirq thread and kick the
+ * irq_work instead) and the irq_work below.
  */
 void ts7800_sim_irq_deliver(struct ts7800_sim *sim)
 {

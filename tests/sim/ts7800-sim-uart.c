@@ -15,11 +15,30 @@
  * ts7800_sim_irq_source() (ts7800-sim-main.c) and here, marked "MODEL:".
  */
 #include <linux/bitfield.h>
+#include <linux/hrtimer.h>
 #include <linux/ktime.h>
 #include <linux/math64.h>
+#include <linux/preempt.h>
 #include <linux/slab.h>
 
 #include "ts7800-sim.h"
+
+/*
+ * The engines' timers take the model's lock, a spinlock_t: they expire in
+ * hard irq context, except on PREEMPT_RT, where that lock sleeps and timers
+ * not marked _HARD expire in the softirq thread (a _HARD one there got
+ * "BUG: scheduling while atomic" in sim_tx_timer when the lock was taken).
+ */
+#define SIM_ENGINE_MODE	HRTIMER_MODE_ABS
+
+/* After an engine's step: raise what is pending from the context it ran in. */
+static void sim_engine_irq(struct ts7800_sim *sim)
+{
+	if (in_hardirq())
+		ts7800_sim_irq_deliver(sim);
+	else
+		ts7800_sim_irq_kick(sim);	/* PREEMPT_RT: the hard irq_work */
+}
 
 static struct sim_uart *sim_port_of(struct ts7800_sim *sim, unsigned int reg)
 {
@@ -256,7 +275,7 @@ void sim_uart_rx_kick(struct sim_uart *u)
 		return;
 	u->rx_busy = true;
 	hrtimer_start(&u->rx_timer, ktime_add_ns(sim_start_time(u->rx_line_free), slice_ns),
-		      HRTIMER_MODE_ABS_HARD);
+		      SIM_ENGINE_MODE);
 }
 
 static enum hrtimer_restart sim_rx_timer(struct hrtimer *t)
@@ -286,7 +305,7 @@ static enum hrtimer_restart sim_rx_timer(struct hrtimer *t)
 		ret = HRTIMER_RESTART;
 	}
 	spin_unlock_irqrestore(&u->sim->lock, flags);
-	ts7800_sim_irq_deliver(u->sim);
+	sim_engine_irq(u->sim);
 	return ret;
 }
 
@@ -338,7 +357,7 @@ void sim_uart_tx_kick(struct sim_uart *u)
 		return;
 	if (!u->stats.to_wire)
 		u->stats.to_wire_first_ns = ktime_to_ns(start);
-	hrtimer_start(&u->tx_timer, ktime_add_ns(start, slice_ns), HRTIMER_MODE_ABS_HARD);
+	hrtimer_start(&u->tx_timer, ktime_add_ns(start, slice_ns), SIM_ENGINE_MODE);
 }
 
 static enum hrtimer_restart sim_tx_timer(struct hrtimer *t)
@@ -368,7 +387,7 @@ static enum hrtimer_restart sim_tx_timer(struct hrtimer *t)
 		ret = HRTIMER_RESTART;
 	}
 	spin_unlock_irqrestore(&u->sim->lock, flags);
-	ts7800_sim_irq_deliver(u->sim);
+	sim_engine_irq(u->sim);
 	return ret;
 }
 
@@ -455,7 +474,7 @@ int sim_reg_read(void *context, unsigned int reg, unsigned int *val)
 {
 	struct ts7800_sim *sim = context;
 	struct sim_uart *u;
-	unsigned long flags;
+	unsigned long flags, irqflags;
 
 	if (reg == TS7800_DIO_IN)
 		sim_dio_hold_read(sim);	/* outside the model lock */
@@ -489,9 +508,10 @@ int sim_reg_read(void *context, unsigned int reg, unsigned int *val)
 		break;
 	case TS7800_FPGA_IRQ_MASK_LO:
 	case TS7800_FPGA_IRQ_MASK_HI:
-		raw_spin_lock(&sim->irq_lock);
+		/* irqsave: sim->lock keeps irqs on under PREEMPT_RT */
+		raw_spin_lock_irqsave(&sim->irq_lock, irqflags);
 		*val = sim_half(sim->irq_enable, reg);
-		raw_spin_unlock(&sim->irq_lock);
+		raw_spin_unlock_irqrestore(&sim->irq_lock, irqflags);
 		break;
 	default:
 		*val = 0;
@@ -506,7 +526,7 @@ int sim_reg_write(void *context, unsigned int reg, unsigned int val)
 {
 	struct ts7800_sim *sim = context;
 	struct sim_uart *u;
-	unsigned long flags;
+	unsigned long flags, irqflags;
 
 	/*
 	 * MODEL: the window takes 16-bit accesses only (docs/tsuart.md,
@@ -539,9 +559,10 @@ int sim_reg_write(void *context, unsigned int reg, unsigned int val)
 		break;
 	case TS7800_FPGA_IRQ_MASK_LO:
 	case TS7800_FPGA_IRQ_MASK_HI:
-		raw_spin_lock(&sim->irq_lock);
+		/* irqsave: sim->lock keeps irqs on under PREEMPT_RT */
+		raw_spin_lock_irqsave(&sim->irq_lock, irqflags);
 		sim->irq_enable = sim_set_half(sim->irq_enable, reg, val);
-		raw_spin_unlock(&sim->irq_lock);
+		raw_spin_unlock_irqrestore(&sim->irq_lock, irqflags);
 		break;
 	default:
 		break;	/* MODEL: other registers ignore writes */
@@ -572,9 +593,9 @@ int sim_uart_init(struct ts7800_sim *sim, struct sim_uart *u, unsigned int idx)
 	u->tx.buf = devm_kcalloc(sim->dev, sim_fifo_depth, sizeof(u16), GFP_KERNEL);
 	if (!u->rx.buf || !u->tx.buf)
 		return -ENOMEM;
-	hrtimer_init(&u->rx_timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_HARD);
+	hrtimer_init(&u->rx_timer, CLOCK_MONOTONIC, SIM_ENGINE_MODE);
 	u->rx_timer.function = sim_rx_timer;
-	hrtimer_init(&u->tx_timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_HARD);
+	hrtimer_init(&u->tx_timer, CLOCK_MONOTONIC, SIM_ENGINE_MODE);
 	u->tx_timer.function = sim_tx_timer;
 	return 0;
 }
