@@ -3,11 +3,13 @@
 #
 # check.sh [--fast] [--test NAME]...: the project's whole test run (the README's
 # test command, and CI's). Installs what is missing, then runs:
-#   kernel gates (W=1 on x86_64/armhf/armel, checkpatch --strict, sparse),
+#   kernel gates (W=1 on every supported kernel, checkpatch --strict, sparse),
 #   unit tests (CTest in one ASan/UBSan build; the plain build the VMs use has
 #   no test binaries), the web dashboard in headless Chromium
 #   (userland/web/tests/browser-check.sh), ARM userland cross builds with the
-#   install manifest of each target, DKMS, the x86_64 VM lane (every suite),
+#   install manifest of each target, DKMS (on 6.1, 6.12, 6.12-rt), the x86_64
+#   VM lane (every suite, on 6.1; the kernel suites also dealt over 6.12 and
+#   6.12-rt, docs/kernels.md),
 #   the debug-kernel VM lane (KASAN, lockdep, kmemleak, UBSAN: the kernel
 #   suites; its kernel is built once and cached, see scripts/debug-kernel.sh,
 #   in the background while the other stages run) and the armhf VM lane.
@@ -29,7 +31,7 @@ while [ $# -gt 0 ]; do
 	case $1 in
 	--test) tests+=(--test "$2"); shift 2 ;;
 	--fast) mode=fast; shift ;;
-	-h|--help) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '3,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "check.sh: unknown argument $1" ;;
 	esac
 done
@@ -117,6 +119,14 @@ x86_lane() {	# x86_lane LANE [--test SUITE]...: one x86_64 guest
 	shift
 	[ -s "$BUILD/kmod/x86_64/modules.list" ] || "$TOP/scripts/build-kmod.sh" x86_64
 	stage "$lane VM lane" "$TOP/tests/harness/vm-x86.sh" --lane "$lane" "$@"
+}
+newer_kernels() {	# the kernel suites dealt over 6.12 and 6.12-rt (lib-host.sh: newer_kernel_suites)
+	local k sel
+	for k in 6.12 6.12-rt; do
+		mapfile -t sel < <(newer_kernel_suites "$k" | awk '{ print "--test"; print }')
+		[ -s "$BUILD/kmod/x86_64-$k/modules.list" ] || "$TOP/scripts/build-kmod.sh" "x86_64-$k"
+		stage "x86_64-$k VM lane" "$TOP/tests/harness/vm-x86.sh" --kernel-flavour "$k" "${sel[@]}"
+	done
 }
 armhf_lane() {
 	[ -s "$BUILD/kmod/armhf/modules.list" ] || "$TOP/scripts/build-kmod.sh" armhf
@@ -211,15 +221,17 @@ full)
 	#           without x86_lane=user), then the armhf lane, then the armel
 	#           cross build (this track ends first otherwise);
 	#   vmuser  the x86_64 guest of the user-space suites (x86_lane=user in
-	#           their settings), then DKMS (its own guest), then the
-	#           two-computer test (two guests at once, about 5 min);
+	#           their settings), then DKMS (a guest per amd64 kernel), then
+	#           the kernel suites dealt over 6.12 and 6.12-rt (a guest each,
+	#           about 14 min together), then the two-computer test (two
+	#           guests at once, about 5 min);
 	#   debug   the debug lane, as soon as its kernel is there (a cold build
 	#           runs in the background from the start; vm-debug.sh waits);
 	#   host    the unit tests, the browser check, the armhf cross build.
 	mapfile -t kernel_sel < <(x86_suites other | awk '{ print "--test"; print }')
 	mapfile -t user_sel < <(x86_suites user | awk '{ print "--test"; print }')
 	vm_track() { x86_lane x86_64 "${kernel_sel[@]}"; armhf_lane; cross_check armel; }
-	vmuser_track() { x86_lane x86_64-user "${user_sel[@]}"; dkms_check; pair_check; }
+	vmuser_track() { x86_lane x86_64-user "${user_sel[@]}"; dkms_check; newer_kernels; pair_check; }
 	track vm vm_track
 	track vmuser vmuser_track
 	track debug debug_lane
@@ -235,7 +247,7 @@ done >"$RESULTS/all.tsv"
 "$TOP/scripts/skip-policy.sh" "$RESULTS/all.tsv" >"$RESULTS/skip-policy.tsv"
 cat "$RESULTS/skip-policy.tsv" >>"$RESULTS/all.tsv"
 # VM time per suite and lane (the 7th column of the lanes' rows).
-for lane in x86_64 x86_64-2 x86_64-user armhf debug twocomp-a twocomp-b; do
+for lane in x86_64 x86_64-2 x86_64-user x86_64-6.12 x86_64-6.12-rt armhf debug twocomp-a twocomp-b; do
 	[ -s "$RESULTS/$lane.tsv" ] || continue
 	awk -F'\t' -v lane="$lane" '$7 != "" {
 			s = $1; sub(/^[^:]*: /, "", s); sub(/\/.*/, "", s); t[s] += $7

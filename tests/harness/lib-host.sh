@@ -161,3 +161,18 @@ x86_suites() {
 	done
 	return 0
 }
+# newer_kernel_suites 6.12|6.12-rt: the kernel suites make check runs on that
+# kernel (docs/kernels.md): those whose settings say rt_lane=1 (the DIO
+# irqchip, ts-can1's shared interrupt) on 6.12-rt, the others on 6.12, so
+# that each kernel suite runs on one of the two in every run.
+newer_kernel_suites() {
+	local suite
+	for suite in $(kernel_suites); do
+		if grep -qx 'rt_lane=1' "$TOP/tests/vm/$suite/settings"; then
+			[ "$1" = 6.12-rt ] && echo "$suite"
+		else
+			[ "$1" = 6.12 ] && echo "$suite"
+		fi
+	done
+	return 0
+}
