@@ -94,7 +94,7 @@ static bool read_sent(uint8_t *buf, size_t len)
 int main(void)
 {
 	int ld = N_RS485_DEFAULT_LDISC, fd;
-	double lat[ROUNDS], seen_s[ROUNDS], worst_seen = 0;
+	double lat[ROUNDS], worst_seen = 0;
 	unsigned int round, intact = 0, seen = 0;
 	uint8_t frame[FRAME_LEN], got[FRAME_LEN + 1];
 
@@ -112,7 +112,7 @@ int main(void)
 		uint64_t before = tx_frames(fd);
 		unsigned long refused = starved();
 		bool waiting;
-		double t0, end;
+		double t0, end, seen_s;
 
 		frame[0] = N_RS485_ADDR_BROADCAST;
 		frame[1] = 0x40 + round;
@@ -126,11 +126,11 @@ int main(void)
 		end = t0 + DEADLINE_S;
 		while (!(waiting = starved() != refused) && now_s() < end)
 			usleep(1000);
-		seen_s[round] = now_s() - t0;
+		seen_s = now_s() - t0;
 		if (waiting) {
 			seen++;
-			if (seen_s[round] > worst_seen)
-				worst_seen = seen_s[round];
+			if (seen_s > worst_seen)
+				worst_seen = seen_s;
 		}
 		set_room(4 * FRAME_LEN);
 		t0 = now_s();
@@ -144,7 +144,7 @@ int main(void)
 		else
 			tap_diag("round %u: the tty was not sent the frame whole", round);
 		tap_diag("round %u: the tty refused a character after %.1f ms%s; frame out %.1f ms "
-			 "after the room", round, seen_s[round] * 1e3, waiting ? "" : " (never)",
+			 "after the room", round, seen_s * 1e3, waiting ? "" : " (never)",
 			 lat[round] * 1e3);
 	}
 	tap_ok(seen == ROUNDS, "the bus worker found no room in %u of %u rounds (seen within %.1f ms)",
