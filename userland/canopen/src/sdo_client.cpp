@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "advee/canopen/sdo_crc.hpp"
+
 namespace advee::canopen {
 
 namespace {
@@ -17,6 +19,22 @@ constexpr std::uint8_t kScsUploadSegment = 0x00;
 constexpr std::uint8_t kScsDownloadSegment = 0x20;
 constexpr std::uint8_t kScsInitiateUpload = 0x40;
 constexpr std::uint8_t kScsInitiateDownload = 0x60;
+// Block transfer (CiA 301 §7.2.4.3.9-16): client 0xA0 upload / 0xC0
+// download, server 0xC0 upload / 0xA0 download; the low bits are the
+// subcommand, the CRC flag and the size flag.
+constexpr std::uint8_t kCcsBlockUpload = 0xA0;
+constexpr std::uint8_t kCcsBlockDownload = 0xC0;
+constexpr std::uint8_t kScsBlockUpload = 0xC0;
+constexpr std::uint8_t kScsBlockDownload = 0xA0;
+constexpr std::uint8_t kBlockSubMask = 0xE3;  // command specifier and subcommand
+constexpr std::uint8_t kBlockInitiateSub = 0x00;
+constexpr std::uint8_t kBlockEndSub = 0x01;
+constexpr std::uint8_t kBlockAckSub = 0x02;
+constexpr std::uint8_t kBlockStartUpload = 0x03;
+constexpr std::uint8_t kBlockCrc = 0x04;
+constexpr std::uint8_t kBlockSize = 0x02;
+constexpr std::uint8_t kLastSegment = 0x80;
+constexpr std::uint8_t kSeqnoMask = 0x7F;
 constexpr std::uint8_t kToggle = 0x10;
 constexpr std::uint8_t kExpedited = 0x02;
 constexpr std::uint8_t kSizeIndicated = 0x01;
@@ -26,6 +44,8 @@ constexpr std::size_t kSegmentBytes = 7;
 // segment responses carry data there.
 bool carries_multiplexer(const CanFrame& f) {
   const std::uint8_t cs = f.data[0] & kCsMask;
+  if (cs == kScsBlockUpload) return (f.data[0] & 0xE1) == (kScsBlockUpload | kBlockInitiateSub);
+  if (cs == kScsBlockDownload) return (f.data[0] & kBlockSubMask) == (kScsBlockDownload | kBlockInitiateSub);
   return cs == kScsInitiateUpload || cs == kScsInitiateDownload || f.data[0] == kAbort;
 }
 std::pair<std::uint16_t, std::uint8_t> multiplexer(const CanFrame& f) {
@@ -37,12 +57,27 @@ SdoClient::SdoClient(std::uint8_t node, FrameSender send, NowFn now, Duration ti
     : node_(node), send_(std::move(send)), now_(std::move(now)), timeout_(timeout) {}
 
 void SdoClient::upload(std::uint16_t index, std::uint8_t sub, SdoCallback done) {
-  enqueue({true, index, sub, {}, std::move(done)});
+  enqueue({true, false, index, sub, {}, std::move(done)});
 }
 
 void SdoClient::download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data,
                          SdoCallback done) {
-  enqueue({false, index, sub, std::move(data), std::move(done)});
+  enqueue({false, false, index, sub, std::move(data), std::move(done)});
+}
+
+void SdoClient::block_upload(std::uint16_t index, std::uint8_t sub, SdoCallback done) {
+  enqueue({true, true, index, sub, {}, std::move(done)});
+}
+
+void SdoClient::block_download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data,
+                               SdoCallback done) {
+  // Zero bytes have no segment to carry them: expedited.
+  const bool block = !data.empty();
+  enqueue({false, block, index, sub, std::move(data), std::move(done)});
+}
+
+void SdoClient::set_block_size(std::uint8_t segments) {
+  block_size_ = std::clamp<std::uint8_t>(segments, 1, kMaxBlockSize);
 }
 
 void SdoClient::enqueue(Request r) {
@@ -76,7 +111,9 @@ void SdoClient::start_active() {
   offset_ = 0;
   received_.clear();
   upload_size_.reset();
-  if (r.upload) {
+  if (r.block) {
+    start_block(b);
+  } else if (r.upload) {
     phase_ = Phase::kUploadInitiate;
     b[0] = kCcsInitiateUpload;
   } else if (r.data.empty()) {
@@ -95,6 +132,41 @@ void SdoClient::start_active() {
     store_le<std::uint32_t>(std::span(b).subspan(4), static_cast<std::uint32_t>(r.data.size()));
   }
   send_request(b);
+}
+
+void SdoClient::start_block(std::array<std::uint8_t, 8>& b) {
+  const Request& r = *active_;
+  seqno_ = 0;
+  last_segment_ = false;
+  block_start_ = 0;
+  if (r.upload) {
+    phase_ = Phase::kBlockUploadInitiate;
+    b[0] = kCcsBlockUpload | kBlockCrc | kBlockInitiateSub;
+    b[4] = block_size_;
+    b[5] = 0;  // protocol switch threshold: none, block whatever the size
+  } else {
+    phase_ = Phase::kBlockDownloadInitiate;
+    b[0] = kCcsBlockDownload | kBlockCrc | kBlockSize | kBlockInitiateSub;
+    store_le<std::uint32_t>(std::span(b).subspan(4), static_cast<std::uint32_t>(r.data.size()));
+  }
+}
+
+// Sends the segments of one block from offset_, numbered from 1; the last
+// segment of the data carries kLastSegment.
+void SdoClient::send_block() {
+  const auto& d = active_->data;
+  block_start_ = offset_;
+  seqno_ = 0;
+  phase_ = Phase::kBlockDownloadAck;
+  while (seqno_ < peer_block_size_ && offset_ < d.size()) {
+    const std::size_t n = std::min(kSegmentBytes, d.size() - offset_);
+    const bool last = offset_ + n == d.size();
+    std::array<std::uint8_t, 8> b{};
+    b[0] = static_cast<std::uint8_t>((last ? kLastSegment : 0) | ++seqno_);
+    std::copy_n(d.begin() + static_cast<std::ptrdiff_t>(offset_), n, b.begin() + 1);
+    offset_ += n;
+    send_request(b);
+  }
 }
 
 void SdoClient::send_download_segment() {
@@ -142,24 +214,138 @@ bool SdoClient::initiate_matches(const CanFrame& f) const {
 bool SdoClient::handle(const CanFrame& f) {
   if (f.id != cob::kSdoTx + node_ || f.rtr) return false;
   if (!active_ || f.len < 4) return true;  // stale or stray response: ignore
+  // Upload segments of a block carry a sequence number in byte 0, any value
+  // but that of an abort (sequence number 0 is not one).
+  if (phase_ == Phase::kBlockUploadSegments && f.data[0] != kAbort) {
+    on_block_upload_segment(f);
+    return true;
+  }
   if (f.data[0] == kAbort) {
     // The server has one transfer with us, so its abort ends the active one
     // even when it names another object (some servers send zeros), unless
     // it names the object of a transfer we gave up on: that one is late.
     if (!initiate_matches(f) && multiplexer(f) == given_up_) return true;
-    finish({static_cast<SdoAbort>(load_le<std::uint32_t>(std::span(f.data).subspan(4))), true, {}});
+    const auto code = static_cast<SdoAbort>(load_le<std::uint32_t>(std::span(f.data).subspan(4)));
+    if (code == SdoAbort::kUnknownCommand &&
+        (phase_ == Phase::kBlockUploadInitiate || phase_ == Phase::kBlockDownloadInitiate)) {
+      // No block transfer on this server: the same transfer segmented.
+      active_->block = false;
+      start_active();
+      return true;
+    }
+    finish({code, true, {}});
     return true;
   }
   // A response that names another object is a late answer to an older
   // transfer, whatever its kind: checked before the command specifier.
   if (carries_multiplexer(f) && !initiate_matches(f)) return true;
-  const bool initiating = phase_ == Phase::kDownloadInitiate || phase_ == Phase::kUploadInitiate;
-  if (!initiating && carries_multiplexer(f)) return true;  // a repeated initiate answer
-  if (active_->upload)
+  if (!initiating() && carries_multiplexer(f)) return true;  // a repeated initiate answer
+  if (active_->block && active_->upload)
+    on_block_upload_response(f);
+  else if (active_->block)
+    on_block_download_response(f);
+  else if (active_->upload)
     on_upload_response(f);
   else
     on_download_response(f);
   return true;
+}
+
+bool SdoClient::initiating() const {
+  return phase_ == Phase::kDownloadInitiate || phase_ == Phase::kUploadInitiate ||
+         phase_ == Phase::kBlockDownloadInitiate || phase_ == Phase::kBlockUploadInitiate;
+}
+
+void SdoClient::on_block_download_response(const CanFrame& f) {
+  const std::uint8_t b0 = f.data[0];
+  const std::uint8_t sub = b0 & kBlockSubMask;
+  const auto& d = active_->data;
+  if (phase_ == Phase::kBlockDownloadInitiate) {
+    if (sub != (kScsBlockDownload | kBlockInitiateSub)) return abort_local(SdoAbort::kUnknownCommand);
+    crc_ = (b0 & kBlockCrc) != 0;
+    peer_block_size_ = f.data[4];
+    if (peer_block_size_ == 0 || peer_block_size_ > kMaxBlockSize) return abort_local(SdoAbort::kInvalidBlockSize);
+    return send_block();
+  }
+  if (phase_ == Phase::kBlockDownloadAck) {
+    if (sub != (kScsBlockDownload | kBlockAckSub)) return abort_local(SdoAbort::kUnknownCommand);
+    const std::uint8_t acked = f.data[1];
+    if (acked > seqno_) return abort_local(SdoAbort::kInvalidSequence);
+    peer_block_size_ = f.data[2];
+    if (peer_block_size_ == 0 || peer_block_size_ > kMaxBlockSize) return abort_local(SdoAbort::kInvalidBlockSize);
+    // Segments after the last acknowledged one go again in the next block.
+    offset_ = std::min(d.size(), block_start_ + acked * kSegmentBytes);
+    if (offset_ < d.size()) return send_block();
+    const std::size_t in_last = d.size() - (d.size() - 1) / kSegmentBytes * kSegmentBytes;
+    std::array<std::uint8_t, 8> b{};
+    b[0] = static_cast<std::uint8_t>(kCcsBlockDownload | ((kSegmentBytes - in_last) << 2) | kBlockEndSub);
+    if (crc_) store_le<std::uint16_t>(std::span(b).subspan(1, 2), sdo_block_crc(d));
+    phase_ = Phase::kBlockDownloadEnd;
+    return send_request(b);
+  }
+  if (phase_ == Phase::kBlockDownloadEnd) {
+    if (sub != (kScsBlockDownload | kBlockEndSub)) return abort_local(SdoAbort::kUnknownCommand);
+    finish({});
+  }
+}
+
+void SdoClient::on_block_upload_response(const CanFrame& f) {
+  const std::uint8_t b0 = f.data[0];
+  if (phase_ == Phase::kBlockUploadInitiate) {
+    if ((b0 & kCsMask) == kScsInitiateUpload) {
+      // The server switched to a segmented or expedited upload.
+      active_->block = false;
+      phase_ = Phase::kUploadInitiate;
+      return on_upload_response(f);
+    }
+    if ((b0 & 0xE1) != (kScsBlockUpload | kBlockInitiateSub)) return abort_local(SdoAbort::kUnknownCommand);
+    crc_ = (b0 & kBlockCrc) != 0;
+    if (b0 & kBlockSize) upload_size_ = load_le<std::uint32_t>(std::span(f.data).subspan(4));
+    phase_ = Phase::kBlockUploadSegments;
+    seqno_ = 0;
+    std::array<std::uint8_t, 8> b{};
+    b[0] = kCcsBlockUpload | kBlockStartUpload;
+    return send_request(b);
+  }
+  if (phase_ == Phase::kBlockUploadEnd) {
+    if ((b0 & kBlockSubMask) != (kScsBlockUpload | kBlockEndSub)) return abort_local(SdoAbort::kUnknownCommand);
+    const std::size_t unused = (b0 >> 2) & 7;
+    if (unused > received_.size()) return abort_local(SdoAbort::kTooShort);
+    received_.resize(received_.size() - unused);
+    if (upload_size_ && received_.size() < *upload_size_) return abort_local(SdoAbort::kTooShort);
+    if (upload_size_ && received_.size() > *upload_size_) return abort_local(SdoAbort::kTooLong);
+    if (crc_ && load_le<std::uint16_t>(std::span(f.data).subspan(1, 2)) != sdo_block_crc(received_))
+      return abort_local(SdoAbort::kCrcError);
+    std::array<std::uint8_t, 8> b{};
+    b[0] = kCcsBlockUpload | kBlockEndSub;
+    send_request(b);
+    SdoResult r;
+    r.data = std::move(received_);
+    finish(std::move(r));
+  }
+}
+
+// A segment in sequence is kept; the block is acknowledged at its last
+// number or at the data's last segment, naming the last segment received in
+// sequence, so the server sends the rest again from there.
+void SdoClient::on_block_upload_segment(const CanFrame& f) {
+  const std::uint8_t seqno = f.data[0] & kSeqnoMask;
+  const bool last = (f.data[0] & kLastSegment) != 0;
+  if (seqno == seqno_ + 1 && seqno <= block_size_) {
+    received_.insert(received_.end(), f.data.begin() + 1, f.data.begin() + 1 + kSegmentBytes);
+    seqno_ = seqno;
+    last_segment_ = last;
+    deadline_ = now_() + timeout_;
+    if (upload_size_ && received_.size() > *upload_size_ + kSegmentBytes) return abort_local(SdoAbort::kTooLong);
+  }
+  if (seqno != block_size_ && !last) return;
+  std::array<std::uint8_t, 8> b{};
+  b[0] = kCcsBlockUpload | kBlockAckSub;
+  b[1] = seqno_;
+  b[2] = block_size_;
+  seqno_ = 0;
+  if (last_segment_) phase_ = Phase::kBlockUploadEnd;
+  send_request(b);
 }
 
 void SdoClient::on_download_response(const CanFrame& f) {

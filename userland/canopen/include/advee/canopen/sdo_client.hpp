@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
-// SDO client for one server node (CiA 301 §7.2.4): expedited and segmented
-// upload/download, one outstanding transfer per node with a FIFO queue behind
+// SDO client for one server node (CiA 301 §7.2.4): expedited, segmented and
+// block upload/download (block: CRC when the server supports it, the block
+// size of each side, retransmission from the last acknowledged segment, and
+// segmented transfer when the server refuses block), one outstanding transfer per node with a FIFO queue behind
 // it, a per-step timeout that sends abort 0x05040000 so the server resets,
 // and typed abort codes for every failure. Passive: it sends through a
 // FrameSender, learns about frames through handle() and about time through
@@ -35,6 +37,11 @@ using SdoCallback = std::function<void(const SdoResult&)>;
 class SdoClient {
  public:
   static constexpr Duration kDefaultTimeout = std::chrono::milliseconds(500);
+  // Segments per block this client asks for on upload (CiA 301: 1..127).
+  // Not 127: a block arrives as one burst and must fit the CAN controller's
+  // and the socket's receive queues.
+  static constexpr std::uint8_t kDefaultBlockSize = 32;
+  static constexpr std::uint8_t kMaxBlockSize = 127;
 
   SdoClient(std::uint8_t node, FrameSender send, NowFn now, Duration timeout = kDefaultTimeout);
   SdoClient(const SdoClient&) = delete;
@@ -42,6 +49,11 @@ class SdoClient {
 
   void upload(std::uint16_t index, std::uint8_t sub, SdoCallback done);
   void download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data, SdoCallback done);
+
+  // Block transfer; a server that refuses it (abort 0x05040001 to the
+  // initiate) gets the same transfer segmented (expedited up to 4 bytes).
+  void block_upload(std::uint16_t index, std::uint8_t sub, SdoCallback done);
+  void block_download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data, SdoCallback done);
 
   template <typename T>
   void write(std::uint16_t index, std::uint8_t sub, T value, SdoCallback done) {
@@ -68,15 +80,31 @@ class SdoClient {
   void cancel_all(SdoAbort why = SdoAbort::kGeneral);
 
   void set_timeout(Duration t) { timeout_ = t; }
+  // 1..kMaxBlockSize; applies to the block uploads that start afterwards.
+  void set_block_size(std::uint8_t segments);
+  std::uint8_t block_size() const { return block_size_; }
   Duration timeout() const { return timeout_; }
   std::uint8_t node() const { return node_; }
   bool busy() const { return active_.has_value(); }
   std::size_t queued() const { return queue_.size(); }
 
  private:
-  enum class Phase { kIdle, kDownloadInitiate, kDownloadSegment, kUploadInitiate, kUploadSegment };
+  enum class Phase {
+    kIdle,
+    kDownloadInitiate,
+    kDownloadSegment,
+    kUploadInitiate,
+    kUploadSegment,
+    kBlockDownloadInitiate,
+    kBlockDownloadAck,  // a block sent, its acknowledgement awaited
+    kBlockDownloadEnd,
+    kBlockUploadInitiate,
+    kBlockUploadSegments,
+    kBlockUploadEnd,
+  };
   struct Request {
     bool upload = false;
+    bool block = false;
     std::uint16_t index = 0;
     std::uint8_t sub = 0;
     std::vector<std::uint8_t> data;
@@ -94,6 +122,12 @@ class SdoClient {
   bool initiate_matches(const CanFrame& f) const;
   void on_download_response(const CanFrame& f);
   void on_upload_response(const CanFrame& f);
+  bool initiating() const;
+  void start_block(std::array<std::uint8_t, 8>& b);
+  void send_block();
+  void on_block_download_response(const CanFrame& f);
+  void on_block_upload_response(const CanFrame& f);
+  void on_block_upload_segment(const CanFrame& f);
 
   std::uint8_t node_;
   FrameSender send_;
@@ -106,6 +140,14 @@ class SdoClient {
   std::size_t offset_ = 0;
   std::optional<std::size_t> upload_size_;
   std::vector<std::uint8_t> received_;
+  // Block transfer: segments per block, the server's CRC support, where the
+  // current block started, segments sent in it / last in-sequence received.
+  std::uint8_t block_size_ = kDefaultBlockSize;
+  std::uint8_t peer_block_size_ = 0;
+  bool crc_ = false;
+  std::size_t block_start_ = 0;
+  std::uint8_t seqno_ = 0;
+  bool last_segment_ = false;
   TimePoint deadline_{};
   // The object of the last transfer this client gave up on (timeout, local
   // abort, cancel): a late server abort for it is not about the active one.

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
-// SDO server of the simulated drive (expedited and segmented), with the fault
+// SDO server of the simulated drive (expedited, segmented and block with CRC),
+// with the fault
 // injections the master's tests need: slow responses, forced abort codes,
 // wrong toggle bits, silence.
 #pragma once
@@ -20,6 +21,8 @@ struct SdoServerFaults {
   bool silent = false;        // never answers
   bool wrong_upload_toggle = false;  // second upload segment carries the wrong toggle
   std::map<std::pair<std::uint16_t, std::uint8_t>, SdoAbort> abort_on;  // forced aborts
+  bool refuse_block = false;  // a server without block transfer: abort 0x05040001
+  std::uint8_t block_size = 16;  // segments per block it takes on download
 };
 
 class SdoServer {
@@ -41,19 +44,38 @@ class SdoServer {
   void on_download_segment(const CanFrame& f);
   void on_initiate_upload(const CanFrame& f);
   void on_upload_segment(const CanFrame& f);
+  void on_block_upload(const CanFrame& f);
+  void on_block_download(const CanFrame& f);
+  void on_block_download_segment(const CanFrame& f);
+  void send_upload_block();
 
   std::uint8_t node_;
   ObjectDictionary& od_;
   FrameSender send_;
   NowFn now_;
   SdoServerFaults faults_;
-  enum class Phase { kIdle, kDownload, kUpload } phase_ = Phase::kIdle;
+  enum class Phase {
+    kIdle,
+    kDownload,
+    kUpload,
+    kBlockDownload,     // segments of a block arriving
+    kBlockDownloadEnd,  // all data in, the end awaited
+    kBlockUploadStart,  // initiate answered, the client's start awaited
+    kBlockUploadAck,    // a block sent, its acknowledgement awaited
+    kBlockUploadEnd,    // end sent, the client's end awaited
+  } phase_ = Phase::kIdle;
   std::uint16_t index_ = 0;
   std::uint8_t sub_ = 0;
   bool toggle_ = false;
   std::vector<std::uint8_t> buffer_;
   std::size_t offset_ = 0;
   std::size_t segments_sent_ = 0;
+  // Block transfer: CRC agreed, segments per block, the block's start and
+  // the last segment received in sequence.
+  bool crc_ = false;
+  std::uint8_t block_size_ = 0;
+  std::size_t block_start_ = 0;
+  std::uint8_t seqno_ = 0;
   std::deque<std::pair<TimePoint, CanFrame>> delayed_;
   std::uint64_t requests_ = 0;
 };
