@@ -38,7 +38,11 @@ TEST(CanopenctlCliTest, UsageErrorsExit2BeforeAnyIo) {
                            "-i nosuchcan0 read 1 1000 u33", "-i nosuchcan0 read 128 1000",
                            "-i nosuchcan0 read 1 1000:300", "-i nosuchcan0 nmt jump all",
                            "-i nosuchcan0 monitor 1x", "-i nosuchcan0 bogus", "-i nosuchcan0 pdo",
-                           "-i nosuchcan0"}) {
+                           "-i nosuchcan0", "-i nosuchcan0 block read 1", "-i nosuchcan0 block",
+                           "-i nosuchcan0 block write 1 2000 i8 300", "-i nosuchcan0 block -b 128 read 1 2000",
+                           "-i nosuchcan0 block -b 0 read 1 2000", "-i nosuchcan0 scan 0-5",
+                           "-i nosuchcan0 scan 9-3", "-i nosuchcan0 scan 1-128", "-i nosuchcan0 hb 0",
+                           "-i nosuchcan0 hb x"}) {
     const Outcome r = canopenctl(args);
     EXPECT_EQ(r.status, 2) << "canopenctl " << args << ":\n" << r.out;
     EXPECT_FALSE(tried_io(r.out)) << "canopenctl " << args << " opened the socket:\n" << r.out;
@@ -46,9 +50,13 @@ TEST(CanopenctlCliTest, UsageErrorsExit2BeforeAnyIo) {
 }
 
 TEST(CanopenctlCliTest, ValidArgumentsReachTheSocket) {
-  const Outcome r = canopenctl("-i nosuchcan0 -t 200 write 1 6081 i8 -128");
-  EXPECT_EQ(r.status, 1) << r.out;
-  EXPECT_TRUE(tried_io(r.out)) << r.out;
+  for (const char* args : {"-i nosuchcan0 -t 200 write 1 6081 i8 -128", "-i nosuchcan0 block -b 127 read 1 2000 str",
+                           "-i nosuchcan0 block write 1 2000 hex 00ff", "-i nosuchcan0 scan 1-3",
+                           "-i nosuchcan0 hb 1"}) {
+    const Outcome r = canopenctl(args);
+    EXPECT_EQ(r.status, 1) << "canopenctl " << args << ":\n" << r.out;
+    EXPECT_TRUE(tried_io(r.out)) << "canopenctl " << args << ":\n" << r.out;
+  }
 }
 
 TEST(CanopenctlCliTest, HelpExits0) {

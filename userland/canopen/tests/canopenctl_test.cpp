@@ -50,6 +50,25 @@ TEST(CanopenctlTextTest, NodesObjectsAndTypesAreChecked) {
   EXPECT_THROW(parse_type("u33"), UsageError);
 }
 
+TEST(CanopenctlTextTest, NodeRangesAreChecked) {
+  EXPECT_EQ(parse_node_range("1-127"), std::make_pair(std::uint8_t{1}, std::uint8_t{127}));
+  EXPECT_EQ(parse_node_range("5"), std::make_pair(std::uint8_t{5}, std::uint8_t{5}));
+  for (const char* bad : {"0-5", "1-128", "9-3", "1-", "-5", "a-b", "0", "1-2-3"})
+    EXPECT_THROW(parse_node_range(bad), UsageError) << bad;
+}
+
+TEST(CanopenctlTextTest, HeartbeatsAndIdentities) {
+  EXPECT_EQ(describe_heartbeat(make_frame(0x703, {0x00})), "heartbeat node 3 boot-up");
+  EXPECT_EQ(describe_heartbeat(make_frame(0x77F, {0x7F})), "heartbeat node 127 pre-operational");
+  EXPECT_EQ(describe_heartbeat(make_frame(0x703, {0x00, 0x00})), std::nullopt) << "not one byte";
+  EXPECT_EQ(describe_heartbeat(make_frame(0x603, {0x05})), std::nullopt);
+  Identity id;
+  id.device_type = 0x20192;
+  id.identity = {0xFB, 0x64200000, std::nullopt, 3};
+  EXPECT_EQ(describe_identity(3, id),
+            "node 3: device type 0x00020192, vendor 0x000000FB, product 0x64200000, revision -, serial 0x00000003");
+}
+
 TEST(CanopenctlTextTest, FormatReadsBackWhatEncodeWrote) {
   for (const char* v : {"-128", "127", "0"}) EXPECT_EQ(format(parse_type("i8"), encode(parse_type("i8"), v)), v);
   EXPECT_EQ(format(parse_type("i32"), encode(parse_type("i32"), "-70000")), "-70000");

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: GPL-2.0
 // canopenctl: command-line CANopen master tool on SocketCAN. NMT commands,
-// typed SDO read/write, PDO mapping dump, CiA 402 status and power control,
-// live traffic monitor. Every argument is checked before the CAN socket is
+// typed SDO read/write (block transfer too), a scan of the nodes that answer
+// with their identity, PDO mapping dump, CiA 402 status and power control,
+// live traffic and heartbeat monitors. Every argument is checked before the CAN socket is
 // opened. Exit status 0 on success, 1 on a CANopen or I/O error (message on
 // stderr), 2 on usage errors.
 #include <CLI/CLI.hpp>
 
 #include <csignal>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,15 +41,29 @@ struct Command {
   std::uint8_t sub = 0;
   const SdoType* type = nullptr;
   std::vector<std::uint8_t> value;
-  long count = -1;  // monitor: frames, -1 forever
+  long count = -1;  // monitor, hb: frames, -1 forever
+  std::pair<std::uint8_t, std::uint8_t> nodes{1, 127};  // scan
 };
 
 struct Args {
   std::string ifname = "can0";
   int timeout_ms = 500;
-  std::string nmt_cmd, node, object, type = "hex", value;
+  std::string nmt_cmd, node, object, type = "hex", value, nodes = "1-127";
   long count = -1;
+  int block_size = SdoClient::kDefaultBlockSize;
 };
+
+// The object and type arguments of read/write and block read/write.
+void describe_transfer(CLI::App& cmd, Args& a, bool write) {
+  cmd.add_option("node", a.node)->required();
+  cmd.add_option("object", a.object, "INDEX[:SUB], index in hex")->required();
+  auto* type = cmd.add_option("type", a.type, "u8 u16 u32 u64 i8 i16 i32 i64 str hex");
+  if (!write) type->capture_default_str();
+  if (write) {
+    type->required();
+    cmd.add_option("value", a.value, "must fit the type")->required();
+  }
+}
 
 // The CLI11 description of the command line; `a` receives the raw strings.
 void describe(CLI::App& app, Args& a) {
@@ -57,15 +74,19 @@ void describe(CLI::App& app, Args& a) {
   auto* nmt = app.add_subcommand("nmt", "NMT command to NODE or all");
   nmt->add_option("command", a.nmt_cmd, "start|stop|preop|reset-node|reset-comm")->required();
   nmt->add_option("node", a.node, "NODE (1..127) or all")->required();
-  auto* read = app.add_subcommand("read", "SDO upload");
-  read->add_option("node", a.node)->required();
-  read->add_option("object", a.object, "INDEX[:SUB], index in hex")->required();
-  read->add_option("type", a.type, "u8 u16 u32 u64 i8 i16 i32 i64 str hex")->capture_default_str();
-  auto* write = app.add_subcommand("write", "SDO download");
-  write->add_option("node", a.node)->required();
-  write->add_option("object", a.object, "INDEX[:SUB], index in hex")->required();
-  write->add_option("type", a.type, "u8 u16 u32 u64 i8 i16 i32 i64 str hex")->required();
-  write->add_option("value", a.value, "must fit the type")->required();
+  describe_transfer(*app.add_subcommand("read", "SDO upload"), a, false);
+  describe_transfer(*app.add_subcommand("write", "SDO download"), a, true);
+  auto* block = app.add_subcommand("block", "SDO block transfer (segmented if the node refuses block)");
+  block->require_subcommand(1, 1);
+  block->fallthrough();
+  block->add_option("-b,--block-size", a.block_size, "segments per block on upload")
+      ->check(CLI::Range(1, static_cast<int>(SdoClient::kMaxBlockSize)))
+      ->capture_default_str();
+  describe_transfer(*block->add_subcommand("read", "block upload"), a, false);
+  describe_transfer(*block->add_subcommand("write", "block download"), a, true);
+  app.add_subcommand("scan", "which nodes answer an SDO upload of 0x1000, with their identity 0x1018")
+      ->add_option("nodes", a.nodes, "NODE or FIRST-LAST")
+      ->capture_default_str();
   for (const char* name : {"pdo", "status", "enable", "disable", "quick-stop"}) {
     const char* what = std::string(name) == "pdo"      ? "dump RPDO1-4 and TPDO1-4 as the device reports them"
                        : std::string(name) == "status" ? "CiA 402 statusword, state and mode"
@@ -73,7 +94,9 @@ void describe(CLI::App& app, Args& a) {
     app.add_subcommand(name, what)->add_option("node", a.node)->required();
   }
   auto* monitor = app.add_subcommand("monitor", "decode bus traffic");
-  monitor->add_option("count", a.count, "frames (default: until interrupted)")->check(CLI::PositiveNumber);
+  monitor->add_option("count", a.count, "frames (default: until interrupted)")->check(CLI::Range(1L, 1000000000L));
+  auto* hb = app.add_subcommand("hb", "heartbeats and boot-ups with the NMT state they report");
+  hb->add_option("count", a.count, "heartbeats (default: until interrupted)")->check(CLI::Range(1L, 1000000000L));
 }
 
 // Throws UsageError.
@@ -89,14 +112,52 @@ Command check(const std::string& name, const Args& a) {
     c.node = parse_node(a.node, true);
     return c;
   }
-  if (name == "monitor") return c;
+  if (name == "monitor" || name == "hb") return c;
+  if (name == "scan") {
+    c.nodes = parse_node_range(a.nodes);
+    return c;
+  }
   c.node = parse_node(a.node);
-  if (name == "read" || name == "write") {
+  const bool write = name == "write" || name == "block write";
+  if (write || name == "read" || name == "block read") {
     std::tie(c.index, c.sub) = parse_object(a.object);
     c.type = &parse_type(a.type);
   }
-  if (name == "write") c.value = encode(*c.type, a.value);
+  if (write) c.value = encode(*c.type, a.value);
   return c;
+}
+
+// Uploads 0x1000 from every node of `nodes` at once (one SDO client each);
+// a node that answers gets 0x1018:1..4 read too. Calls done with what
+// answered when every transfer has ended.
+void scan(Master& master, std::pair<std::uint8_t, std::uint8_t> nodes,
+          std::function<void(std::map<std::uint8_t, Identity>)> done) {
+  struct State {
+    std::map<std::uint8_t, Identity> found;
+    int pending = 0;
+    std::function<void(std::map<std::uint8_t, Identity>)> done;
+    void end_one() {
+      if (--pending == 0) done(std::move(found));
+    }
+  };
+  auto st = std::make_shared<State>();
+  st->done = std::move(done);
+  st->pending = nodes.second - nodes.first + 1;
+  for (unsigned n = nodes.first; n <= nodes.second; ++n) {
+    const auto node = static_cast<std::uint8_t>(n);
+    SdoClient& sdo = master.sdo(node);
+    sdo.read<std::uint32_t>(0x1000, 0, [st, &sdo, node](std::error_code ec, std::uint32_t type) {
+      if (ec) return st->end_one();
+      st->found[node].device_type = type;
+      st->pending += 4;
+      for (std::uint8_t sub = 1; sub <= 4; ++sub)
+        sdo.read<std::uint32_t>(0x1018, sub, [st, node, sub](std::error_code ec2, std::uint32_t v) {
+          if (!ec2) st->found[node].identity[sub - 1] = v;
+          st->end_one();
+        });
+      st->end_one();
+    });
+  }
 }
 
 }  // namespace
@@ -110,7 +171,10 @@ int main(int argc, char** argv) {
   Command command;
   try {
     app.parse(argc, argv);
-    command = check(app.get_subcommands().front()->get_name(), a);
+    const CLI::App* sub = app.get_subcommands().front();
+    std::string name = sub->get_name();
+    if (!sub->get_subcommands().empty()) name += " " + sub->get_subcommands().front()->get_name();
+    command = check(name, a);
   } catch (const CLI::ParseError& e) {
     const int r = app.exit(e);
     return r == 0 ? 0 : 2;
@@ -158,15 +222,24 @@ int main(int argc, char** argv) {
     if (cmd == "nmt") {
       master.nmt(c.nmt, node);
       loop.post([&] { loop.stop(); });
-    } else if (cmd == "read") {
-      master.sdo(node).upload(c.index, c.sub, [&](const SdoResult& r) {
-        if (!r.ok()) return fail("read", r.error());
-        std::printf("%s\n", format(*c.type, r.data).c_str());
+    } else if (cmd == "read" || cmd == "write" || cmd == "block read" || cmd == "block write") {
+      // A read prints the value; either ends the tool.
+      auto done = [&](const SdoResult& r) {
+        if (!r.ok()) return fail(cmd, r.error());
+        if (cmd == "read" || cmd == "block read")
+          std::printf("%s\n", format(*c.type, r.data).c_str());
         loop.stop();
-      });
-    } else if (cmd == "write") {
-      master.sdo(node).download(c.index, c.sub, c.value, [&](const SdoResult& r) {
-        if (!r.ok()) return fail("write", r.error());
+      };
+      SdoClient& sdo = master.sdo(node);
+      sdo.set_block_size(static_cast<std::uint8_t>(a.block_size));
+      if (cmd == "read") sdo.upload(c.index, c.sub, done);
+      if (cmd == "write") sdo.download(c.index, c.sub, c.value, done);
+      if (cmd == "block read") sdo.block_upload(c.index, c.sub, done);
+      if (cmd == "block write") sdo.block_download(c.index, c.sub, c.value, done);
+    } else if (cmd == "scan") {
+      scan(master, c.nodes, [&](std::map<std::uint8_t, Identity> found) {
+        for (const auto& [n, id] : found) std::printf("%s\n", describe_identity(n, id).c_str());
+        if (found.empty()) std::fprintf(stderr, "canopenctl: scan: no node answered\n"), rc = 1;
         loop.stop();
       });
     } else if (cmd == "pdo") {
@@ -214,10 +287,15 @@ int main(int argc, char** argv) {
         });
       };
       poller = std::make_unique<StatusPoller>(master, read_status);
-    } else if (cmd == "monitor") {
+    } else if (cmd == "hb" || cmd == "monitor") {
+      // count lines, then nothing: frames of the batch that ends the count
+      // are still delivered after loop.stop().
       long count = c.count;
       master.set_observer([&](const CanFrame& f) {
-        std::printf("%s\n", describe_frame(f).c_str());
+        const auto line = cmd == "hb" ? describe_heartbeat(f) : describe_frame(f);
+        if (!line || count == 0) return;
+        std::printf("%s\n", line->c_str());
+        std::fflush(stdout);
         if (count > 0 && --count == 0) loop.stop();
       });
     }

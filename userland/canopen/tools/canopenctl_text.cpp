@@ -51,6 +51,19 @@ std::uint8_t parse_node(const std::string& s, bool allow_all) {
   return static_cast<std::uint8_t>(*n);
 }
 
+std::pair<std::uint8_t, std::uint8_t> parse_node_range(const std::string& s) {
+  const auto dash = s.find('-');
+  if (dash == std::string::npos) {
+    const std::uint8_t n = parse_node(s);
+    return {n, n};
+  }
+  const auto first = to_unsigned(s.substr(0, dash), 0);
+  const auto last = to_unsigned(s.substr(dash + 1), 0);
+  if (!first || !last || *first < 1 || *last > 127 || *first > *last)
+    bad("bad node range '" + s + "' (NODE or FIRST-LAST, 1..127)");
+  return {static_cast<std::uint8_t>(*first), static_cast<std::uint8_t>(*last)};
+}
+
 std::pair<std::uint16_t, std::uint8_t> parse_object(const std::string& s) {
   const auto colon = s.find(':');
   const auto idx = to_unsigned(s.substr(0, colon), 16);
@@ -136,9 +149,8 @@ std::string describe_frame(const CanFrame& f) {
     return s + to_string(*e);
   } else if (f.id == cob::kTime) {
     std::snprintf(buf, sizeof buf, "TIME");
-  } else if (fn == 0x700 && f.len == 1) {
-    std::snprintf(buf, sizeof buf, "heartbeat node %u %s", node,
-                  std::string(to_string(static_cast<NmtState>(f.data[0] & 0x7F))).c_str());
+  } else if (auto hb = describe_heartbeat(f)) {
+    return s + *hb;
   } else if (fn == 0x580 || fn == 0x600) {
     std::snprintf(buf, sizeof buf, "SDO %s node %u %04X:%02X", fn == 0x600 ? "request" : "response", node,
                   f.data[1] | (f.data[2] << 8), f.data[3]);
@@ -150,6 +162,27 @@ std::string describe_frame(const CanFrame& f) {
     }
   }
   return s + buf;
+}
+
+std::optional<std::string> describe_heartbeat(const CanFrame& f) {
+  if ((f.id & 0x780) != 0x700 || f.len != 1 || f.rtr) return std::nullopt;
+  return "heartbeat node " + std::to_string(f.id & 0x7F) + " " +
+         std::string(to_string(static_cast<NmtState>(f.data[0] & 0x7F)));
+}
+
+std::string describe_identity(std::uint8_t node, const Identity& id) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "node %u: device type 0x%08" PRIX32, node, id.device_type);
+  std::string s = buf;
+  static constexpr const char* kNames[] = {"vendor", "product", "revision", "serial"};
+  for (std::size_t i = 0; i < id.identity.size(); ++i) {
+    if (id.identity[i])
+      std::snprintf(buf, sizeof buf, ", %s 0x%08" PRIX32, kNames[i], *id.identity[i]);
+    else
+      std::snprintf(buf, sizeof buf, ", %s -", kNames[i]);
+    s += buf;
+  }
+  return s;
 }
 
 }  // namespace advee::canopen::ctl

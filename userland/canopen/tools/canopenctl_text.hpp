@@ -5,6 +5,7 @@
 // argument with these before it opens the CAN socket.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -31,6 +32,8 @@ const std::vector<SdoType>& sdo_types();
 
 // 1..127, or 0 for "all" when allowed. Throw UsageError.
 std::uint8_t parse_node(const std::string& s, bool allow_all = false);
+// NODE or FIRST-LAST (1..127, FIRST <= LAST). Throws UsageError.
+std::pair<std::uint8_t, std::uint8_t> parse_node_range(const std::string& s);
 // INDEX[:SUB], index in hex, sub-index decimal or 0x-hex.
 std::pair<std::uint16_t, std::uint8_t> parse_object(const std::string& s);
 const SdoType& parse_type(const std::string& s);
@@ -41,5 +44,15 @@ std::string format(const SdoType& t, const std::vector<std::uint8_t>& d);
 
 // "201#0F00  RPDO1 node 1": the frame and what it is by its COB-ID.
 std::string describe_frame(const CanFrame& f);
+// "heartbeat node 5 operational" for a heartbeat or boot-up frame.
+std::optional<std::string> describe_heartbeat(const CanFrame& f);
+
+// What `scan` learns of a node: 0x1000 and the identity object 0x1018
+// (sub-indices 1..4; a device need not have 2..4).
+struct Identity {
+  std::uint32_t device_type = 0;
+  std::array<std::optional<std::uint32_t>, 4> identity;  // vendor, product, revision, serial
+};
+std::string describe_identity(std::uint8_t node, const Identity& id);
 
 }  // namespace advee::canopen::ctl
