@@ -13,9 +13,55 @@ Master::Master(MasterConfig cfg, FrameSender send, NowFn now, WallClockFn wall)
       guarding_(send_, now_, [this](const HeartbeatUpdate& u) { on_heartbeat(u); }),
       hb_producer_(cfg_.node_id, send_, now_),
       sync_(send_, now_),
-      time_(send_, now_, std::move(wall)) {
+      time_(send_, now_, std::move(wall)),
+      sdo_server_(cfg_.node_id, od_, send_, now_) {
+  build_dictionary();
   hb_producer_.set_state(nmt_state_);
   set_heartbeat_period(cfg_.heartbeat_period);
+}
+
+// CiA 301 communication objects of the master as a node. Writes to 0x1016
+// and 0x1017 take effect at once, as on any node.
+void Master::build_dictionary() {
+  using A = Access;
+  od_.add<std::uint32_t>(0x1000, 0, cfg_.device_type, A::kReadOnly);
+  od_.add<std::uint8_t>(0x1001, 0, 0, A::kReadOnly);
+  od_.add<std::uint8_t>(0x1016, 0, kHeartbeatConsumers, A::kReadOnly);
+  for (std::uint8_t i = 1; i <= kHeartbeatConsumers; ++i) od_.add<std::uint32_t>(0x1016, i, 0);
+  od_.add<std::uint16_t>(0x1017, 0, static_cast<std::uint16_t>(
+                                        std::chrono::duration_cast<std::chrono::milliseconds>(cfg_.heartbeat_period).count()));
+  od_.add<std::uint8_t>(0x1018, 0, 4, A::kReadOnly);
+  for (std::uint8_t i = 1; i <= 4; ++i) od_.add<std::uint32_t>(0x1018, i, cfg_.identity[i - 1], A::kReadOnly);
+  // 0x1016:n = node-ID in bits 16..23, consumer time in ms in bits 0..15.
+  // CiA 301: two entries for one node with non-zero times are refused.
+  od_.set_validator(0x1016, [this](std::uint8_t sub, std::span<const std::uint8_t> data) {
+    const auto v = load_le<std::uint32_t>(data);
+    const auto node = (v >> 16) & 0xFF;
+    if (v & 0xFF000000u || node > 127) return SdoAbort::kInvalidValue;
+    if (node == 0 || (v & 0xFFFF) == 0) return SdoAbort::kNone;
+    for (std::uint8_t i = 1; i <= kHeartbeatConsumers; ++i) {
+      const auto other = od_.get<std::uint32_t>(0x1016, i);
+      if (i != sub && ((other >> 16) & 0xFF) == node && (other & 0xFFFF) != 0) return SdoAbort::kParamIncompatible;
+    }
+    return SdoAbort::kNone;
+  });
+  // An entry's node stops being watched when the entry names another one
+  // (nodes the drivers watch by their own monitor() calls stay watched).
+  od_.on_write(0x1016, [this](std::uint8_t sub) {
+    const auto v = od_.get<std::uint32_t>(0x1016, sub);
+    std::uint8_t& watched = consumer_nodes_[sub - 1];
+    if (watched != 0) hb_consumer_.monitor(watched, Duration{});
+    watched = static_cast<std::uint8_t>((v >> 16) & 0x7F);
+    if (watched != 0) hb_consumer_.monitor(watched, std::chrono::milliseconds(v & 0xFFFF));
+  });
+  od_.on_write(0x1017, [this](std::uint8_t) {
+    hb_producer_.set_period(std::chrono::milliseconds(od_.get<std::uint16_t>(0x1017)));
+  });
+}
+
+void Master::send_emcy(std::uint16_t code, std::uint8_t error_register, std::array<std::uint8_t, 5> vendor) {
+  od_.set<std::uint8_t>(0x1001, 0, error_register);
+  send_(emcy_frame({cfg_.node_id, code, error_register, vendor}));
 }
 
 void Master::set_heartbeat_period(Duration period) {
@@ -24,6 +70,8 @@ void Master::set_heartbeat_period(Duration period) {
     send_(heartbeat_frame(cfg_.node_id, NmtState::kBootUp));
   }
   hb_producer_.set_period(period);
+  od_.set<std::uint16_t>(0x1017, 0,
+                         static_cast<std::uint16_t>(std::chrono::duration_cast<std::chrono::milliseconds>(period).count()));
 }
 
 void Master::set_nmt_state(NmtState s) {
@@ -33,6 +81,8 @@ void Master::set_nmt_state(NmtState s) {
 
 void Master::handle(const CanFrame& f) {
   if (observer_) observer_(f);
+  // Requests to the master's own dictionary, while it is a node.
+  if (booted_up_ && sdo_server_.handle(f)) return;
   if (f.id >= cob::kSdoTx + 1 && f.id <= cob::kSdoTx + 127) {
     auto it = sdo_.find(static_cast<std::uint8_t>(f.id - cob::kSdoTx));
     if (it != sdo_.end() && it->second->handle(f)) return;
@@ -66,6 +116,7 @@ void Master::poll() {
   hb_producer_.poll();
   sync_.poll();
   time_.poll();
+  sdo_server_.poll();
   // A service may end another one's registration (and destroy it) from
   // inside poll(): each is looked up again before it is polled.
   std::vector<std::uint64_t> ids;
@@ -85,6 +136,7 @@ std::optional<TimePoint> Master::next_deadline() const {
   take(hb_producer_.deadline());
   take(sync_.deadline());
   take(time_.deadline());
+  take(sdo_server_.deadline());
   for (const auto& [id, s] : registry_->services) take(s->deadline());
   return d;
 }

@@ -11,7 +11,7 @@
 
 #include "advee/canopen/sdo_client.hpp"
 #include "advee/canopen/sdo_crc.hpp"
-#include "advee/canopen/sim/sdo_server.hpp"
+#include "advee/canopen/sdo_server.hpp"
 #include "advee/canopen/virtual_bus.hpp"
 
 namespace advee::canopen {
@@ -34,16 +34,16 @@ class SdoBlockTest : public testing::Test {
 
   ManualClock clock;
   VirtualBus bus;
-  sim::ObjectDictionary od;
+  ObjectDictionary od;
   Tamper to_server = [](CanFrame&) { return true; };
   Tamper to_client = [](CanFrame&) { return true; };
   std::size_t client_port = bus.attach([this](const CanFrame& f) { client.handle(f); });
   std::size_t server_port = bus.attach([this](const CanFrame& f) { server.handle(f); });
   SdoClient client{5, through(client_port, to_server), clock.fn(), 100ms};
-  sim::SdoServer server{5, od, through(server_port, to_client), clock.fn()};
+  SdoServer server{5, od, through(server_port, to_client), clock.fn()};
   std::vector<SdoResult> results;
 
-  void SetUp() override { od.add_string(kDomain, 0, "", sim::Access::kReadWrite); }
+  void SetUp() override { od.add_string(kDomain, 0, "", Access::kReadWrite); }
 
   FrameSender through(std::size_t port, Tamper& tamper) {
     return [this, port, &tamper](const CanFrame& f) {

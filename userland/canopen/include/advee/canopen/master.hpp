@@ -5,6 +5,7 @@
 // next_deadline() has passed, and transmits what comes out of the FrameSender.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -20,7 +21,9 @@
 #include "advee/canopen/listener_list.hpp"
 #include "advee/canopen/nmt.hpp"
 #include "advee/canopen/node_guarding.hpp"
+#include "advee/canopen/object_dictionary.hpp"
 #include "advee/canopen/sdo_client.hpp"
+#include "advee/canopen/sdo_server.hpp"
 #include "advee/canopen/sync.hpp"
 #include "advee/registration.hpp"
 
@@ -44,7 +47,15 @@ struct MasterConfig {
   // is a node on the network: boot-up message first, then heartbeats that
   // carry its NMT state (set_nmt_state()).
   Duration heartbeat_period{};
+  // The master's own dictionary, served by SDO on 0x600 + node_id while it
+  // is a node (heartbeat on): 0x1000, 0x1001, 0x1016:1..kHeartbeatConsumers,
+  // 0x1017, 0x1018:1..4.
+  std::uint32_t device_type = 0;  // CiA 302: no device profile
+  std::array<std::uint32_t, 4> identity{};  // vendor, product, revision, serial
 };
+
+// 0x1016 entries of the master's dictionary.
+inline constexpr std::uint8_t kHeartbeatConsumers = 8;
 
 class Master {
  public:
@@ -101,11 +112,19 @@ class Master {
   // Registration lives (a member of the service).
   [[nodiscard]] Registration attach(TimedService& s);
 
+  // EMCY of the master itself (0x080 + node_id), with the error register
+  // (0x1001) it leaves; code 0 is the error reset.
+  void send_emcy(std::uint16_t code, std::uint8_t error_register, std::array<std::uint8_t, 5> vendor = {});
+  // The master's own dictionary and its SDO server (tests, tools).
+  const ObjectDictionary& dictionary() const { return od_; }
+  SdoServer& sdo_server() { return sdo_server_; }
+
   void send(const CanFrame& f) { send_(f); }
   const MasterConfig& config() const { return cfg_; }
 
  private:
   void on_heartbeat(const HeartbeatUpdate& u);
+  void build_dictionary();
 
   MasterConfig cfg_;
   FrameSender send_;
@@ -116,6 +135,9 @@ class Master {
   HeartbeatProducer hb_producer_;
   SyncProducer sync_;
   TimeProducer time_;
+  ObjectDictionary od_;
+  SdoServer sdo_server_;
+  std::array<std::uint8_t, kHeartbeatConsumers> consumer_nodes_{};  // the node of each 0x1016 entry
   // Shared with the Registrations' cancel functions (through weak_ptr), so
   // that a Registration may outlive the master.
   struct Registry {

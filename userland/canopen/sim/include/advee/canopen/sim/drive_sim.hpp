@@ -17,8 +17,8 @@
 #include "advee/canopen/frame.hpp"
 #include "advee/canopen/nmt.hpp"
 #include "advee/canopen/pdo.hpp"
-#include "advee/canopen/sim/object_dictionary.hpp"
-#include "advee/canopen/sim/sdo_server.hpp"
+#include "advee/canopen/object_dictionary.hpp"
+#include "advee/canopen/sdo_server.hpp"
 
 namespace advee::canopen::sim {
 

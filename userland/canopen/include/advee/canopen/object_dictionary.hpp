@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
-// Object dictionary of the simulated drive: byte values keyed by
-// (index, sub-index) with access rights, PDO mappability and per-index write
+// Object dictionary of a node (the master's own, the simulated drive's): byte
+// values keyed by (index, sub-index) with access rights, PDO mappability and per-index write
 // validators that can refuse a write with an SDO abort code.
 #pragma once
 
@@ -15,7 +15,7 @@
 #include "advee/byte_order.hpp"
 #include "advee/canopen/sdo_abort.hpp"
 
-namespace advee::canopen::sim {
+namespace advee::canopen {
 
 enum class Access { kReadOnly, kReadWrite, kWriteOnly };
 
@@ -71,4 +71,4 @@ class ObjectDictionary {
   std::map<std::uint16_t, WriteHook> hooks_;
 };
 
-}  // namespace advee::canopen::sim
+}  // namespace advee::canopen

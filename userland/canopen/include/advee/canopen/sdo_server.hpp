@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
-// SDO server of the simulated drive (expedited, segmented and block with CRC),
-// with the fault
-// injections the master's tests need: slow responses, forced abort codes,
-// wrong toggle bits, silence.
+// SDO server of a node's object dictionary (the master's own, the simulated
+// drive's): expedited, segmented and block with CRC, with the fault injections
+// the master's tests need (slow responses, forced abort codes, wrong toggle
+// bits, silence, no block transfer).
 #pragma once
 
 #include <deque>
@@ -12,9 +12,9 @@
 
 #include "advee/canopen/clock.hpp"
 #include "advee/canopen/frame.hpp"
-#include "advee/canopen/sim/object_dictionary.hpp"
+#include "advee/canopen/object_dictionary.hpp"
 
-namespace advee::canopen::sim {
+namespace advee::canopen {
 
 struct SdoServerFaults {
   Duration response_delay{};  // slow server
@@ -80,4 +80,4 @@ class SdoServer {
   std::uint64_t requests_ = 0;
 };
 
-}  // namespace advee::canopen::sim
+}  // namespace advee::canopen

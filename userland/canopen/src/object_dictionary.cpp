@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
-#include "advee/canopen/sim/object_dictionary.hpp"
+#include "advee/canopen/object_dictionary.hpp"
 
-namespace advee::canopen::sim {
+namespace advee::canopen {
 
 void ObjectDictionary::add_string(std::uint16_t index, std::uint8_t sub, std::string_view s, Access a) {
   entries_[{index, sub}] = OdEntry{std::vector<std::uint8_t>(s.begin(), s.end()), a, false, true};
@@ -56,4 +56,4 @@ void ObjectDictionary::restore(const ObjectDictionary& defaults, std::uint16_t f
       if (const OdEntry* d = defaults.find(key.first, key.second)) e.value = d->value;
 }
 
-}  // namespace advee::canopen::sim
+}  // namespace advee::canopen

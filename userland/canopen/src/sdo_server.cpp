@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
-#include "advee/canopen/sim/sdo_server.hpp"
+#include "advee/canopen/sdo_server.hpp"
 
 #include <algorithm>
 
 #include "advee/canopen/sdo_crc.hpp"
 
-namespace advee::canopen::sim {
+namespace advee::canopen {
 
 SdoServer::SdoServer(std::uint8_t node, ObjectDictionary& od, FrameSender send, NowFn now)
     : node_(node), od_(od), send_(std::move(send)), now_(std::move(now)) {}
@@ -269,4 +269,4 @@ std::optional<TimePoint> SdoServer::deadline() const {
   return delayed_.front().first;
 }
 
-}  // namespace advee::canopen::sim
+}  // namespace advee::canopen
