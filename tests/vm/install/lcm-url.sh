@@ -48,6 +48,9 @@ tap_is "no installed configuration names an LCM URL" "$found" ""
 overlay_rw /etc || { tap_diag "cannot overlay /etc"; exit 1; }
 mkdir -p /etc/advee && cp -r "$DEST"/etc/advee/. /etc/advee/
 sed -i "s|^\(LCM_DEFAULT_URL=udpm://[0-9.]*\):[0-9]*|\1:$PORT|" /etc/advee/lcm.conf
+# The supervisor refuses a module program it cannot execute (0x41, before
+# LCM): its modules are the staged ones here.
+sed -i "s|path: /usr/|path: $DEST/usr/|" /etc/advee/watchdog.yaml
 live=$(sed -n 's/^LCM_DEFAULT_URL=//p' /etc/advee/lcm.conf)
 tap_diag "live URL for this test: $live"
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "advee/cli.hpp"
 #include "advee/demo/motion_script.hpp"
 #include "advee/module/periodic.hpp"
 #include "advee/module/signals.hpp"
@@ -200,7 +201,8 @@ int main(int argc, char** argv) {
       "  path:\n"
       "    - {speed_mps: 0.5, steering_deg: 0, duration_s: 8}\n"
       "    - {speed_mps: 0.4, steering_deg: 20, duration_s: 6.68}\n\n"
-      "Exit status: 0 path played (or stopped by a signal), 1 LCM or publishing error, 2 bad file or arguments.",
+      "Exit status: 0 path played (or stopped by a signal), 1 bad path file, LCM or publishing error, 2 bad\n"
+      "command line.",
       "advee-drive-script"};
   app.get_formatter()->column_width(34);
   app.add_option("-p,--path", o.path_file, "scripted path file (YAML: path: [{speed_mps, steering_deg, duration_s}])")
@@ -228,18 +230,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.5, 3600.0))
       ->capture_default_str();
   app.add_flag("-q,--quiet", o.quiet, "do not print the segments as they start");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
+  ADVEE_CLI_PARSE(app, argc, argv);
   try {
     return run(o);
-  } catch (const advee::robotsim::ConfigError& e) {
-    std::cerr << "advee-drive-script: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // also a bad path file (robotsim::ConfigError)
     std::cerr << "advee-drive-script: " << e.what() << "\n";
     return 1;
   }

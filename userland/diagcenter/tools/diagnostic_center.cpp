@@ -16,6 +16,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 
+#include "advee/cli.hpp"
 #include "advee/diagcenter/commands.hpp"
 #include "advee/diagcenter/controller.hpp"
 #include "advee/diagcenter/duration.hpp"
@@ -89,7 +90,7 @@ int run_text(lcm::LCM& lcm, Model& model, double duration_s, double period_s, co
     std::cerr << kName << ": no LCM message arrived in " << duration_s << " s on " << url
               << "; are the modules running, and does the host have a multicast route "
                  "(ip route add 224.0.0.0/4 dev lo)?\n";
-    return 2;
+    return advee::cli::kExitFailure;
   }
   return 0;
 }
@@ -97,7 +98,7 @@ int run_text(lcm::LCM& lcm, Model& model, double duration_s, double period_s, co
 int run_tui(lcm::LCM& lcm, Model& model, const DriveLimits& limits, const std::string& url) {
   if (!isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO)) {
     std::cerr << kName << ": the interactive view needs a terminal; use --text --for DURATION\n";
-    return 64;
+    return advee::cli::kExitUsage;
   }
   LcmCommandSink sink(lcm, kName);
   Controller ctl(model, sink, limits);
@@ -180,39 +181,21 @@ int main(int argc, char** argv) {
       "  'none' when nothing arrived; age=SECONDS and stale=1 (docs/diagnostic-center.md).\n\n"
       "EXIT STATUS\n"
       "  0   quit, or --text ran for its duration and received messages\n"
-      "  1   LCM failed\n"
-      "  2   --text: no LCM message arrived at all during the duration\n"
-      "  64  bad command line, or the interactive view without a terminal\n");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 64;
-  }
+      "  1   LCM failed, or --text: no LCM message arrived at all during the duration\n"
+      "  2   bad command line, or the interactive view without a terminal\n");
+  ADVEE_CLI_PARSE(app, argc, argv);
   limits.steering_step_rad = steer_step_deg * M_PI / 180;
   const auto period = parse_duration(period_text);
-  if (!period || *period < 0.05) {
-    std::cerr << kName << ": --period " << period_text << ": a duration of at least 50ms, e.g. 1s\n";
-    return 64;
-  }
+  if (!period || *period < 0.05)
+    return advee::cli::usage_error(app, "--period " + period_text + ": a duration of at least 50ms, e.g. 1s");
   std::optional<double> duration;
   if (!for_text.empty()) {
     duration = parse_duration(for_text);
-    if (!duration || *duration <= 0) {
-      std::cerr << kName << ": --for " << for_text << ": a duration such as 30s, 500ms, 2m\n";
-      return 64;
-    }
+    if (!duration || *duration <= 0)
+      return advee::cli::usage_error(app, "--for " + for_text + ": a duration such as 30s, 500ms, 2m");
   }
-  if (text && !duration) {
-    std::cerr << kName << ": --text needs --for DURATION\n";
-    return 64;
-  }
-  if (!text && duration) {
-    std::cerr << kName << ": --for is for --text\n";
-    return 64;
-  }
+  if (text && !duration) return advee::cli::usage_error(app, "--text needs --for DURATION");
+  if (!text && duration) return advee::cli::usage_error(app, "--for is for --text");
 
   const auto bus_url = advee::msgs::bus_url(url);
   std::unique_ptr<lcm::LCM> bus;

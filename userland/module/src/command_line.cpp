@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "advee/module/exit_code.hpp"
+#include "advee/cli.hpp"
 
 namespace advee::module {
 
@@ -25,19 +25,13 @@ std::variant<std::string, int> parse_command_line(const CommandLineSpec& spec, i
       "  The state follows CM_CMD_STATE addressed to this module (docs/modules.md).\n\n"
       "EXIT STATUS\n"
       "  0          terminated on request\n"
+      "  2          bad command line (nothing started)\n"
       "  0x10+N     resource error N (memory, files, LCM)\n"
       "  0x20+N     device error N\n"
-      "  0x40+N     other error N; 0x41 = bad command line or configuration\n";
+      "  0x40+N     other error N; 0x41 = bad configuration\n";
   if (!spec.exit_details.empty()) footer += spec.exit_details;
   app.footer(footer);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);  // prints the help on stdout, 0
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);  // prints the error on stderr
-    return exit_code(ExitKind::Other, 1);
-  }
+  if (const auto status = cli::parse(app, argc, argv)) return *status;
   if (config.empty() && !spec.default_config.empty() &&
       std::filesystem::exists(spec.default_config))
     config = spec.default_config;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "advee/cli.hpp"
 #include "advee/module/state.hpp"
 #include "advee/module/time.hpp"
 #include "advee/msgs/bus.hpp"
@@ -105,7 +106,10 @@ int main(int argc, char** argv) {
   state->add_option("target", target, "module name, or * for every module")->required();
   state->add_option("state", state_name_arg, "RUN, PAUSE, STOP, TERMINATE, ...")->required();
   state->add_flag("--manual", manual, "an operator's command (needed to enter or leave STOP)");
-  CLI11_PARSE(app, argc, argv);
+  ADVEE_CLI_PARSE(app, argc, argv);
+  const auto new_state = module::parse_state(state_name_arg);
+  if (*state && (!new_state || *new_state == module::State::Unknown))
+    return advee::cli::usage_error(app, "no such state " + state_name_arg + " (RUN, PAUSE, STOP, TERMINATE, ...)");
 
   std::unique_ptr<lcm::LCM> bus;
   try {
@@ -116,11 +120,7 @@ int main(int argc, char** argv) {
   }
   lcm::LCM& lcm = *bus;
   if (*state) {
-    const auto s = module::parse_state(state_name_arg);
-    if (!s || *s == module::State::Unknown) {
-      std::cerr << "advee-lcmctl: no such state " << state_name_arg << "\n";
-      return 2;
-    }
+    const auto s = new_state;
     common::cmd_state_t c;
     c.utime = module::utime_now();
     c.module = "advee-lcmctl";

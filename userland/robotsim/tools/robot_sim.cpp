@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "advee/cli.hpp"
 #include "advee/robotsim/can_drives.hpp"
 #include "advee/robotsim/robot.hpp"
 #include "advee/robotsim/scripted_path.hpp"
@@ -110,8 +111,9 @@ int main(int argc, char** argv) {
       "  robot-sim --can vcan0 --rs485-control /run/rs485-sim.sock --lcm --print\n\n"
       "EXIT STATUS:\n"
       "  0 done (--duration reached, or SIGINT/SIGTERM)\n"
-      "  1 a simulator refused a value or could not be reached, or a bad --drive-input line\n"
-      "  2 bad option or unusable map, robot or path file (the message names file, line and field)\n\n"
+      "  1 an unusable map, robot or path file (the message names file, line and field), a simulator\n"
+      "    refused a value or could not be reached, CAN or LCM failed, or a bad --drive-input line\n"
+      "  2 bad command line (an unknown option, a bad value, options that exclude each other)\n\n"
       "DRIVE INPUT (--drive-input): text lines 'SPEED_MPS STEERING_DEG' (steering counter-clockwise,\n"
       "'#' comments); the last line holds, the robot stands still until the first.\n\n"
       "DRIVES (--can): EPOS node 1 (0x60FF/0x606C in motor rpm), IclA node 2 (0x607A/0x6064 in\n"
@@ -159,11 +161,12 @@ int main(int argc, char** argv) {
                                  "simulated second");
   app.add_flag("--fast", fast, "do not wait for real time between steps");
   app.add_flag("--check", check, "load the map, robot and path files, report errors, exit");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  ADVEE_CLI_PARSE(app, argc, argv);
+  if (!can_if.empty() && fast)
+    return advee::cli::usage_error(app, "--can runs in real time (the drives follow the clock): drop --fast");
+#ifndef ADVEE_ROBOTSIM_LCM
+  if (lcm_opt->count()) return advee::cli::usage_error(app, "built without LCM: --lcm is not available");
+#endif
 
   World world;
   RobotDescription desc;
@@ -174,23 +177,13 @@ int main(int argc, char** argv) {
     if (drive_input.empty() && can_if.empty()) path = load_path(path_file);
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "robot-sim: %s\n", e.what());
-    return 2;
+    return 1;
   }
-  if (!can_if.empty() && fast) {
-    std::fprintf(stderr, "robot-sim: --can runs in real time (the drives follow the clock): drop --fast\n");
-    return 2;
-  }
-#ifndef ADVEE_ROBOTSIM_LCM
-  if (lcm_opt->count()) {
-    std::fprintf(stderr, "robot-sim: built without LCM: --lcm is not available\n");
-    return 2;
-  }
-#endif
   Robot robot(desc, world, seed);
   if (robot.bumper_contact(robot.pose())) {
     std::fprintf(stderr, "robot-sim: %s: the start pose touches a wall or obstacle of %s\n", robot_file.c_str(),
                  map_file.c_str());
-    return 2;
+    return 1;
   }
   if (check) {
     std::printf("ok: %zu wall/box segments, %zu circles, %zu beacons; %zu SRF, %zu IR; path %.1f s\n",
@@ -220,7 +213,7 @@ int main(int argc, char** argv) {
     }
   } catch (const std::system_error& e) {
     std::fprintf(stderr, "robot-sim: %s\n", e.what());
-    return 2;
+    return 1;
   }
 #ifdef ADVEE_ROBOTSIM_LCM
   std::unique_ptr<PosePublisher> pose_pub;
@@ -229,7 +222,7 @@ int main(int argc, char** argv) {
       pose_pub = std::make_unique<PosePublisher>(lcm_url);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "robot-sim: %s\n", e.what());
-      return 2;
+      return 1;
     }
   }
 #endif

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 
+#include "advee/cli.hpp"
 #include "advee/msgs/bus.hpp"
 #include "advee/robotsim/pose_publisher.hpp"
 #include "sim/data_pose_t.hpp"
@@ -43,11 +44,7 @@ int main(int argc, char** argv) {
   app.add_option("-t,--timeout", seconds, "stop after this many seconds (0 = never)")->check(CLI::NonNegativeNumber);
   app.add_option("-n,--count", count, "stop after this many messages (0 = no limit)")->check(CLI::NonNegativeNumber);
   app.footer("EXIT STATUS: 0 at least one message, 1 none (or LCM failed), 2 bad option");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  ADVEE_CLI_PARSE(app, argc, argv);
   std::unique_ptr<lcm::LCM> bus;
   try {
     bus = advee::msgs::open_bus(advee::msgs::bus_url(url, "--url"));

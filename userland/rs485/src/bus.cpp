@@ -11,6 +11,7 @@
 #include <array>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -103,8 +104,18 @@ Bus::Bus(const std::string& device, const BusOptions& options)
   // Setting the number it already has would end other processes' pending calls.
   if (current != ldisc_) {
     int ld = ldisc_;
-    if (ioctl_retry(fd_.get(), TIOCSETD, &ld) < 0)
-      throw_errno(device_ + ": attach line discipline " + std::to_string(ldisc_) + " (n_rs485)");
+    if (ioctl_retry(fd_.get(), TIOCSETD, &ld) < 0) {
+      // EINVAL: no discipline of that number is registered (the kernel's
+      // request_module("tty-ldisc-N") found none).
+      const std::error_code error = last_error();
+      std::string what = device_ + ": attach line discipline " + std::to_string(ldisc_) + " (n_rs485)";
+      if (error.value() == EINVAL)
+        what += std::filesystem::exists("/sys/module/n_rs485")
+                    ? ": the kernel has no discipline " + std::to_string(ldisc_) +
+                          " (n_rs485 is loaded with another ldisc= number)"
+                    : ": n_rs485 is not loaded and could not be loaded (modprobe n_rs485)";
+      throw std::system_error(error, what);
+    }
   }
   stop_.reset(::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK));
   if (!stop_) throw_errno("eventfd");

@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "advee/cli.hpp"
 #include "advee/rs485/bus.hpp"
 #include "advee/rs485/devices/device.hpp"
 #include "advee/unique_fd.hpp"
@@ -28,19 +29,20 @@ using namespace advee::rs485;
 using advee::rs485::cli::UsageError;
 using json = nlohmann::json;
 
-constexpr int kExitOk = 0;
-constexpr int kExitOutcome = 1;
-constexpr int kExitUsage = 2;
-constexpr int kExitSystem = 3;
+// advee/cli.hpp: 1 for every runtime failure, the protocol's and the system's.
+constexpr int kExitOk = advee::cli::kExitSuccess;
+constexpr int kExitOutcome = advee::cli::kExitFailure;
+constexpr int kExitUsage = advee::cli::kExitUsage;
+constexpr int kExitSystem = advee::cli::kExitFailure;
 
 constexpr const char* kExitCodes =
     "EXIT STATUS\n"
     "  0  success (every transaction OK; for scan: the scan ran)\n"
     "  1  a transaction ended with a protocol outcome other than OK\n"
-    "     (TIMEOUT, BADCRC, UNKINSTR, DEVERR, ERROR, BADRESP)\n"
-    "  2  usage error (bad option, address, data or duration)\n"
-    "  3  device or system error (cannot open the bus, discipline missing,\n"
-    "     hangup, an ioctl failed)\n";
+    "     (TIMEOUT, BADCRC, UNKINSTR, DEVERR, ERROR, BADRESP), or a device or\n"
+    "     system error (cannot open the bus, discipline missing, hangup, an\n"
+    "     ioctl failed); the message on stderr says which\n"
+    "  2  usage error (bad option, address, data or duration)\n";
 
 struct Global {
   std::string bus;
@@ -473,16 +475,7 @@ int main(int argc, char** argv) {
   config_set->footer(kExitCodes);
   config_get->footer(kExitCodes);
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return kExitUsage;
-  }
+  ADVEE_CLI_PARSE(app, argc, argv);
 
   try {
     if (*scan_cmd) return run_scan(g, scan);

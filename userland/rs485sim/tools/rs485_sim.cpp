@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "advee/cli.hpp"
 #include "advee/rs485sim/config.hpp"
 #include "advee/rs485sim/control.hpp"
 #include "advee/rs485sim/control_client.hpp"
@@ -64,8 +65,8 @@ constexpr const char* kFooter =
     "\n"
     "SIGNALS: SIGTERM, SIGINT: stop, print each device's counters on stderr, exit 0.\n"
     "\n"
-    "EXIT STATUS: 0 stopped by a signal or command answered 'ok'; 1 error at run time\n"
-    "or command answered 'error:'; 2 bad command line or configuration.\n"
+    "EXIT STATUS: 0 stopped by a signal or command answered 'ok'; 1 bad configuration file,\n"
+    "error at run time or command answered 'error:'; 2 bad command line.\n"
     "\n"
     "EXAMPLES:\n"
     "  rs485-sim -c robot.yaml -v\n"
@@ -271,19 +272,13 @@ int main(int argc, char** argv) {
   app.add_flag("--check", check, "load the configuration, report errors, exit");
   app.add_option("--send", send, "client mode: send one control command to --control and print the reply")
       ->type_name("COMMAND");
-  CLI11_PARSE(app, argc, argv);
+  ADVEE_CLI_PARSE(app, argc, argv);
 
   if (!send.empty()) {
-    if (control.empty()) {
-      std::fprintf(stderr, "rs485-sim: --send needs --control PATH\n");
-      return 2;
-    }
+    if (control.empty()) return advee::cli::usage_error(app, "--send needs --control PATH");
     return send_command(control, send);
   }
-  if (config.empty()) {
-    std::fprintf(stderr, "rs485-sim: --config FILE is required (see --help)\n");
-    return 2;
-  }
+  if (config.empty()) return advee::cli::usage_error(app, "--config FILE is required");
   try {
     SimConfig cfg = load_config_file(config, app.count("--seed") ? std::optional(seed) : std::nullopt);
     if (!control.empty()) cfg.control = control;
@@ -292,10 +287,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     return run(cfg, verbose);
-  } catch (const ConfigError& e) {
-    std::fprintf(stderr, "rs485-sim: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // ConfigError too: the file is read at run time
     std::fprintf(stderr, "rs485-sim: %s\n", e.what());
     return 1;
   }

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0
 #include "advee/watchdog/config.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <set>
 
@@ -77,6 +81,20 @@ SupervisorConfig parse_supervisor_config(const ConfigNode& root) {
 
 SupervisorConfig load_supervisor_config(const std::string& path) {
   return parse_supervisor_config(ConfigNode::load_file(path));
+}
+
+void check_module_programs(const SupervisorConfig& config) {
+  std::string bad;
+  for (const auto& m : config.modules) {
+    std::error_code ec;
+    std::string why;
+    if (!std::filesystem::is_regular_file(m.path, ec))
+      why = ec ? ec.message() : "not a regular file";
+    else if (::access(m.path.c_str(), X_OK) != 0)
+      why = std::strerror(errno);
+    if (!why.empty()) bad += "\n  module " + m.name + ": path " + m.path + ": " + why;
+  }
+  if (!bad.empty()) throw module::ConfigError("modules that cannot be started:" + bad);
 }
 
 }  // namespace advee::watchdog

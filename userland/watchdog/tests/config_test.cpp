@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "advee/watchdog/config.hpp"
 
@@ -79,6 +83,35 @@ TEST(SupervisorConfig, Errors) {
             "/etc/advee/watchdog.yaml:2: max_s: must not be below initial_s");
   EXPECT_EQ(error_of("modules: {a: 1}\n"), "/etc/advee/watchdog.yaml:1: modules: expected a list of modules");
   EXPECT_EQ(error_of("module: {}\n"), "/etc/advee/watchdog.yaml:1: modules: missing");
+}
+
+// A module whose program cannot be executed is a configuration error (the
+// supervisor would restart it forever on exit code 127), named with its path.
+TEST(SupervisorConfig, ModuleProgramsMustBeExecutable) {
+  const auto data = std::filesystem::temp_directory_path() /
+                    ("advee-config-test-" + std::to_string(::getpid()));
+  std::ofstream(data) << "not a program\n";
+  std::filesystem::permissions(data, std::filesystem::perms::owner_read);
+  auto c = parse_supervisor_config(ConfigNode::parse(
+      "modules:\n"
+      "  - {name: shell, path: /bin/sh}\n"
+      "  - {name: gone, path: /nonexistent/driver}\n"
+      "  - {name: dir, path: /}\n"
+      "  - {name: data, path: " + data.string() + "}\n",
+      "/etc/advee/watchdog.yaml"));
+  std::string what;
+  try {
+    check_module_programs(c);
+  } catch (const ConfigError& e) {
+    what = e.what();
+  }
+  std::filesystem::remove(data);
+  EXPECT_EQ(what, "modules that cannot be started:\n"
+                  "  module gone: path /nonexistent/driver: No such file or directory\n"
+                  "  module dir: path /: not a regular file\n"
+                  "  module data: path " + data.string() + ": Permission denied");
+  c.modules.resize(1);
+  EXPECT_NO_THROW(check_module_programs(c));
 }
 
 }  // namespace

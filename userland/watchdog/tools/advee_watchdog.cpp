@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
 // advee-watchdog: runs and guards the robot's modules (docs/modules.md).
-#include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "advee/cli.hpp"
 #include "advee/module/module.hpp"
 #include "advee/watchdog/config.hpp"
 #include "advee/watchdog/supervisor.hpp"
@@ -17,17 +17,21 @@ int main(int argc, char** argv) {
       "back-off, and obeys CM_CMD_STATE for each module (TERMINATE keeps it down, RUN starts it\n"
       "again). Under systemd (Type=notify) it reports READY=1, STATUS= and pings WATCHDOG=1\n"
       "at half of WatchdogSec. The LCM URL comes from the configuration or LCM_DEFAULT_URL.\n"
-      "Exit codes: 0 terminated on request, 0x41 configuration error, 0x11 resource error.",
+      "Exit codes: 0 terminated on request, 2 bad command line, 0x41 configuration error (also a\n"
+      "module whose program cannot be executed), 0x11 resource error.",
       "advee-watchdog"};
   std::string config_path = "/etc/advee/watchdog.yaml";
   bool check_only = false;
   app.add_option("-c,--config", config_path, "supervisor configuration (YAML)")
       ->capture_default_str();
-  app.add_flag("--check", check_only, "parse the configuration, print the module list and exit");
-  CLI11_PARSE(app, argc, argv);
+  app.add_flag("--check", check_only,
+               "parse the configuration, check that every module's program can be executed, print "
+               "the module list and exit");
+  ADVEE_CLI_PARSE(app, argc, argv);
 
   return module::guarded_main("advee-watchdog", [&] {
     auto cfg = watchdog::load_supervisor_config(config_path);
+    watchdog::check_module_programs(cfg);
     if (check_only) {
       for (const auto& m : cfg.modules) {
         std::cout << m.name << " " << m.path;

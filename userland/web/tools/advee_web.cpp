@@ -3,6 +3,7 @@
 // every LCM channel, forwards each message as JSON over WebSocket and serves
 // the page on the same port. docs/web-dashboard.md describes it.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <asio/io_context.hpp>
 #include <asio/post.hpp>
 #include <asio/signal_set.hpp>
@@ -13,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include "advee/cli.hpp"
 #include "advee/web/bridge_server.hpp"
 #include "advee/web/lcm_source.hpp"
 #include "advee/web/history.hpp"
@@ -93,14 +95,17 @@ int main(int argc, char** argv) {
                                                  "its messages are coalesced")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{1024}, std::size_t{64} << 20));
-  CLI11_PARSE(app, argc, argv);
+  ADVEE_CLI_PARSE(app, argc, argv);
 
   advee::web::BridgeOptions opt;
-  if (!split_listen(listen, opt.address, opt.port)) {
-    std::cerr << "advee-web: --listen " << listen << ": expected HOST:PORT\n";
-    return 2;
-  }
+  if (!split_listen(listen, opt.address, opt.port))
+    return advee::cli::usage_error(app, "--listen " + listen + ": expected HOST:PORT");
   opt.root = root;
+  // A root without the page would serve nothing but 404s.
+  if (std::error_code ec; !std::filesystem::is_regular_file(std::filesystem::path(root) / "index.html", ec)) {
+    std::cerr << "advee-web: --root " << root << ": no index.html there (the dashboard page)\n";
+    return advee::cli::kExitFailure;
+  }
   opt.max_buffered_bytes = max_buffered;
   const auto scene = advee::web::load_scene(robot_file, map_file);
   if (scene.contains("errors"))

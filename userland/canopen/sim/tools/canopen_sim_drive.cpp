@@ -3,12 +3,9 @@
 // (vcan in the tests), as its own process. Fault injection at start-up by
 // option, at run time by signal: SIGUSR1 = EMCY 0x4210 + fault, SIGUSR2 =
 // heartbeat silence on/off. Prints one line per state change on stdout.
-#include <getopt.h>
-
+#include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <map>
 #include <string>
 
@@ -16,91 +13,54 @@
 #include "advee/canopen/event_loop.hpp"
 #include "advee/canopen/runtime.hpp"
 #include "advee/canopen/sim/drive_sim.hpp"
+#include "advee/cli.hpp"
 
 using namespace advee::canopen;
 
-namespace {
-
-void usage(FILE* out) {
-  std::fputs(
-      "usage: canopen-sim-drive [options]\n"
-      "  -i, --interface IF          CAN interface (default vcan0)\n"
-      "  -n, --node ID               node-ID 1..127 (default 1)\n"
-      "  -p, --profile epos|icla     object dictionary and PDO defaults (default epos)\n"
-      "      --home-switch POS       position of the home switch (default -3000)\n"
-      "      --step-ms MS            dynamics step (default 1)\n"
-      "      --sdo-delay-ms MS       answer SDO requests this late\n"
-      "      --refuse-transition-16  quick stop active stays on enable operation\n"
-      "      --refuse-mode-while-halt  0x6061 ignores 0x6060 while halt is set\n"
-      "      --no-home-switch        homing ends in a homing error\n"
-      "      --sdo-abort IDX:SUB=CODE  answer SDO access to the object with this abort code (hex)\n"
-      "  -h, --help\n"
-      "signals: SIGUSR1 inject EMCY 0x4210 + fault, SIGUSR2 toggle heartbeat silence\n",
-      out);
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
+  CLI::App app{"canopen-sim-drive: one simulated CiA 402 drive (EPOS or IclA profile) on a SocketCAN\n"
+               "interface, as its own process. Prints one line per NMT or CiA 402 state change.\n"
+               "Signals: SIGUSR1 injects EMCY 0x4210 and a fault, SIGUSR2 toggles heartbeat silence,\n"
+               "SIGINT and SIGTERM end it.\n"
+               "Exit status: 0 ended by a signal, 1 the CAN interface failed, 2 bad command line.",
+               "canopen-sim-drive"};
   std::string ifname = "vcan0";
   sim::DriveSimConfig cfg;
   sim::DriveFaults faults;
   int sdo_delay_ms = 0;
+  int step_ms = 1;
+  unsigned node = cfg.node;
+  std::string profile = "epos";
+  std::vector<std::string> abort_specs;
+  app.add_option("-i,--interface", ifname, "CAN interface")->capture_default_str();
+  app.add_option("-n,--node", node, "node-ID")->check(CLI::Range(1u, 127u))->capture_default_str();
+  app.add_option("-p,--profile", profile, "object dictionary and PDO defaults")
+      ->check(CLI::IsMember({"epos", "icla"}))
+      ->capture_default_str();
+  app.add_option("--home-switch", cfg.home_switch_position, "position of the home switch")->capture_default_str();
+  app.add_option("--step-ms", step_ms, "dynamics step in ms")->check(CLI::Range(1, 1000))->capture_default_str();
+  app.add_option("--sdo-delay-ms", sdo_delay_ms, "answer SDO requests this late")->check(CLI::NonNegativeNumber);
+  app.add_flag("--refuse-transition-16", faults.refuse_transition_16, "quick stop active stays on enable operation");
+  app.add_flag("--refuse-mode-while-halt", faults.refuse_mode_change_while_halt,
+               "0x6061 ignores 0x6060 while halt is set");
+  app.add_flag("--no-home-switch", faults.homing_switch_missing, "homing ends in a homing error");
+  app.add_option("--sdo-abort", abort_specs,
+                 "answer SDO access to the object INDEX:SUB with this abort CODE (hex: INDEX:SUB=CODE; repeatable)")
+      ->type_name("IDX:SUB=CODE");
+  ADVEE_CLI_PARSE(app, argc, argv);
+  cfg.node = static_cast<std::uint8_t>(node);
+  if (profile == "icla") {
+    cfg.profile = sim::DriveProfile::kIcla;
+    cfg.position_per_velocity = 1.0;
+  }
+  cfg.step = std::chrono::milliseconds(step_ms);
   std::map<std::pair<std::uint16_t, std::uint8_t>, SdoAbort> aborts;
-  enum { kHome = 256, kStep, kDelay, kT16, kHalt, kNoSwitch, kAbort };
-  static const option opts[] = {{"interface", required_argument, nullptr, 'i'},
-                                {"node", required_argument, nullptr, 'n'},
-                                {"profile", required_argument, nullptr, 'p'},
-                                {"home-switch", required_argument, nullptr, kHome},
-                                {"step-ms", required_argument, nullptr, kStep},
-                                {"sdo-delay-ms", required_argument, nullptr, kDelay},
-                                {"refuse-transition-16", no_argument, nullptr, kT16},
-                                {"refuse-mode-while-halt", no_argument, nullptr, kHalt},
-                                {"no-home-switch", no_argument, nullptr, kNoSwitch},
-                                {"sdo-abort", required_argument, nullptr, kAbort},
-                                {"help", no_argument, nullptr, 'h'},
-                                {nullptr, 0, nullptr, 0}};
-  for (int c; (c = getopt_long(argc, argv, "i:n:p:h", opts, nullptr)) != -1;) {
-    switch (c) {
-      case 'i': ifname = optarg; break;
-      case 'n': {
-        const int n = std::atoi(optarg);
-        if (!is_valid_node_id(static_cast<unsigned>(n))) {
-          std::fprintf(stderr, "canopen-sim-drive: node-ID must be 1..127\n");
-          return 2;
-        }
-        cfg.node = static_cast<std::uint8_t>(n);
-        break;
-      }
-      case 'p':
-        if (!std::strcmp(optarg, "epos")) {
-          cfg.profile = sim::DriveProfile::kEpos;
-        } else if (!std::strcmp(optarg, "icla")) {
-          cfg.profile = sim::DriveProfile::kIcla;
-          cfg.position_per_velocity = 1.0;
-        } else {
-          std::fprintf(stderr, "canopen-sim-drive: unknown profile '%s'\n", optarg);
-          return 2;
-        }
-        break;
-      case kHome: cfg.home_switch_position = std::atof(optarg); break;
-      case kStep: cfg.step = std::chrono::milliseconds(std::max(1, std::atoi(optarg))); break;
-      case kDelay: sdo_delay_ms = std::atoi(optarg); break;
-      case kT16: faults.refuse_transition_16 = true; break;
-      case kHalt: faults.refuse_mode_change_while_halt = true; break;
-      case kNoSwitch: faults.homing_switch_missing = true; break;
-      case kAbort: {
-        unsigned idx, sub, code;
-        if (std::sscanf(optarg, "%x:%x=%x", &idx, &sub, &code) != 3 || idx > 0xFFFF || sub > 0xFF) {
-          std::fprintf(stderr, "canopen-sim-drive: --sdo-abort wants INDEX:SUB=CODE in hex\n");
-          return 2;
-        }
-        aborts[{static_cast<std::uint16_t>(idx), static_cast<std::uint8_t>(sub)}] = static_cast<SdoAbort>(code);
-        break;
-      }
-      case 'h': usage(stdout); return 0;
-      default: usage(stderr); return 2;
-    }
+  for (const auto& spec : abort_specs) {
+    unsigned idx, sub, code;
+    char end;
+    if (std::sscanf(spec.c_str(), "%x:%x=%x%c", &idx, &sub, &code, &end) != 3 || idx > 0xFFFF || sub > 0xFF)
+      return advee::cli::usage_error(app, "--sdo-abort " + spec + ": expected INDEX:SUB=CODE in hex");
+    aborts[{static_cast<std::uint16_t>(idx), static_cast<std::uint8_t>(sub)}] = static_cast<SdoAbort>(code);
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
 

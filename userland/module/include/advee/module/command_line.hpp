@@ -18,8 +18,8 @@ struct CommandLineSpec {
 };
 
 // The configuration file to load ("" = the built-in defaults), or the status
-// to exit with: 0 after --help, exit_code(Other, 1) after a usage error (the
-// message is on stderr).
+// to exit with (advee/cli.hpp): 0 after --help or --version, 2 after a usage
+// error (the message is on stderr).
 std::variant<std::string, int> parse_command_line(const CommandLineSpec& spec, int argc,
                                                   char** argv);
 

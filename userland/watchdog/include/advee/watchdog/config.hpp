@@ -34,4 +34,9 @@ struct SupervisorConfig {
 SupervisorConfig parse_supervisor_config(const module::ConfigNode& root);
 SupervisorConfig load_supervisor_config(const std::string& path);
 
+// Throws module::ConfigError naming every module whose program cannot be
+// executed (missing, not a regular file, not executable): started, it would
+// exit 127 at every restart.
+void check_module_programs(const SupervisorConfig& config);
+
 }  // namespace advee::watchdog
