@@ -1,11 +1,12 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
 # canopenctl against a simulated EPOS on vcan: typed SDO (expedited,
-# segmented and block), a scan with identities, abort codes, SDO timeout with the abort on the bus, PDO dump,
-# NMT, CiA 402 status and power control, monitor.
+# segmented and block), a scan with identities, abort codes, SDO timeout with
+# the abort on the bus, PDO dump and remap, NMT, CiA 402 status and power
+# control, monitor, hb.
 . "$(dirname "$0")/common.inc"
 canopen_setup
-tap_plan 22
+tap_plan 23
 
 start_sim epos -n 3 -p epos --sdo-abort 6060:00=08000022 || exit 1
 start_sim slow -n 4 -p icla --sdo-delay-ms 800 || exit 1
@@ -49,6 +50,9 @@ tap_ok "PDO dump shows RPDO4 = controlword + target velocity" \
 	grep -qx "RPDO4 0x503 type 255: 6040:00/16 60FF:00/32" "$SCR/pdo"
 tap_ok "PDO dump shows TxPDO4 disabled by default" \
 	grep -qx "TPDO4 0x483 (disabled) type 255: 6041:00/16 606C:00/32" "$SCR/pdo"
+tap_is "pdo remap of TPDO4 (left disabled) reads back what was asked" \
+	"$(ctl pdo remap 3 tpdo 4 6041:0/16 6064:0/32 --type 254 --disabled 2>&1)" \
+	"TPDO4 0x483 (disabled) type 254: 6041:00/16 6064:00/32"
 
 ctl nmt start 3
 tap_ok "NMT start reaches the drive" wait_line "$SCR/epos.log" "node 3 nmt operational" 5

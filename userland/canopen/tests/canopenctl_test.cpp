@@ -57,6 +57,19 @@ TEST(CanopenctlTextTest, NodeRangesAreChecked) {
     EXPECT_THROW(parse_node_range(bad), UsageError) << bad;
 }
 
+TEST(CanopenctlTextTest, PdoRemapArgumentsAreChecked) {
+  const PdoMapping m = parse_pdo_remap(3, "tpdo", "4", {"6041:0/16", "6064:00/32"});
+  EXPECT_EQ(to_string(m), "TPDO4 0x483 type 255: 6041:00/16 6064:00/32");
+  EXPECT_EQ(to_string(parse_pdo_remap(1, "rpdo", "1", {})), "RPDO1 0x201 type 255:");
+  const std::vector<std::vector<std::string>> bad_entries = {
+      {"6041:0"}, {"6041:0/0"}, {"6041:0/65"}, {"6041:0:1/16"}, {"6041:0/16x"},
+      {"6064:0/32", "6064:0/32", "6041:0/16"}, std::vector<std::string>(9, "6041:0/1")};
+  for (const auto& e : bad_entries) EXPECT_THROW(parse_pdo_remap(3, "tpdo", "1", e), UsageError) << e[0];
+  EXPECT_THROW(parse_pdo_remap(3, "xpdo", "1", {}), UsageError);
+  EXPECT_THROW(parse_pdo_remap(3, "tpdo", "0", {}), UsageError);
+  EXPECT_THROW(parse_pdo_remap(3, "tpdo", "5", {}), UsageError);
+}
+
 TEST(CanopenctlTextTest, HeartbeatsAndIdentities) {
   EXPECT_EQ(describe_heartbeat(make_frame(0x703, {0x00})), "heartbeat node 3 boot-up");
   EXPECT_EQ(describe_heartbeat(make_frame(0x77F, {0x7F})), "heartbeat node 127 pre-operational");

@@ -43,6 +43,7 @@ struct Command {
   std::vector<std::uint8_t> value;
   long count = -1;  // monitor, hb: frames, -1 forever
   std::pair<std::uint8_t, std::uint8_t> nodes{1, 127};  // scan
+  PdoMapping pdo;  // pdo remap
 };
 
 struct Args {
@@ -51,6 +52,10 @@ struct Args {
   std::string nmt_cmd, node, object, type = "hex", value, nodes = "1-127";
   long count = -1;
   int block_size = SdoClient::kDefaultBlockSize;
+  std::string pdo_kind, pdo_number;
+  std::vector<std::string> pdo_entries;
+  int pdo_type = 255;
+  bool pdo_disabled = false;
 };
 
 // The object and type arguments of read/write and block read/write.
@@ -87,10 +92,20 @@ void describe(CLI::App& app, Args& a) {
   app.add_subcommand("scan", "which nodes answer an SDO upload of 0x1000, with their identity 0x1018")
       ->add_option("nodes", a.nodes, "NODE or FIRST-LAST")
       ->capture_default_str();
-  for (const char* name : {"pdo", "status", "enable", "disable", "quick-stop"}) {
-    const char* what = std::string(name) == "pdo"      ? "dump RPDO1-4 and TPDO1-4 as the device reports them"
-                       : std::string(name) == "status" ? "CiA 402 statusword, state and mode"
-                                                       : "CiA 402 power state via SDO (fault reset included)";
+  // pdo NODE dumps; pdo remap ... rewrites one PDO (the node is checked in check()).
+  auto* pdo = app.add_subcommand("pdo", "dump RPDO1-4 and TPDO1-4 as the device reports them");
+  pdo->add_option("node", a.node);
+  pdo->fallthrough();
+  auto* remap = pdo->add_subcommand("remap", "CiA 301 safe remap of one PDO, then its read-back");
+  remap->add_option("node", a.node)->required();
+  remap->add_option("kind", a.pdo_kind, "rpdo|tpdo")->required();
+  remap->add_option("number", a.pdo_number, "1..4 (predefined COB-ID)")->required();
+  remap->add_option("entries", a.pdo_entries, "INDEX:SUB/BITS ... (at most 8, 64 bits)");
+  remap->add_option("--type", a.pdo_type, "transmission type")->check(CLI::Range(0, 255))->capture_default_str();
+  remap->add_flag("--disabled", a.pdo_disabled, "leave the COB-ID invalid");
+  for (const char* name : {"status", "enable", "disable", "quick-stop"}) {
+    const char* what = std::string(name) == "status" ? "CiA 402 statusword, state and mode"
+                                                     : "CiA 402 power state via SDO (fault reset included)";
     app.add_subcommand(name, what)->add_option("node", a.node)->required();
   }
   auto* monitor = app.add_subcommand("monitor", "decode bus traffic");
@@ -117,7 +132,13 @@ Command check(const std::string& name, const Args& a) {
     c.nodes = parse_node_range(a.nodes);
     return c;
   }
+  if (a.node.empty()) throw UsageError("a node-ID is required");
   c.node = parse_node(a.node);
+  if (name == "pdo remap") {
+    c.pdo = parse_pdo_remap(c.node, a.pdo_kind, a.pdo_number, a.pdo_entries);
+    c.pdo.transmission_type = static_cast<std::uint8_t>(a.pdo_type);
+    if (a.pdo_disabled) c.pdo.cob_id |= kPdoCobInvalid;
+  }
   const bool write = name == "write" || name == "block write";
   if (write || name == "read" || name == "block read") {
     std::tie(c.index, c.sub) = parse_object(a.object);
@@ -253,6 +274,22 @@ int main(int argc, char** argv) {
               std::printf("%s\n", to_string(m).c_str());
             if (--*remaining == 0) loop.stop();
           });
+    } else if (cmd == "pdo remap") {
+      run_sdo_writes(master.sdo(node), pdo_remap_writes(c.pdo), [&, node](const SdoSequenceResult& r) {
+        if (r.error) {
+          char what[48];
+          std::snprintf(what, sizeof what, "pdo remap: write %04X:%02X", r.failed.index, r.failed.sub);
+          return fail(what, r.error);
+        }
+        read_pdo_mapping(master.sdo(node), c.pdo.kind, c.pdo.number, [&](std::error_code ec, const PdoMapping& m) {
+          if (ec) return fail("pdo remap: read-back", ec);
+          std::printf("%s\n", to_string(m).c_str());
+          if (to_string(m) != to_string(c.pdo))
+            std::fprintf(stderr, "canopenctl: pdo remap: the device reports another mapping than %s\n",
+                         to_string(c.pdo).c_str()), rc = 1;
+          loop.stop();
+        });
+      });
     } else if (cmd == "status") {
       master.sdo(node).read<std::uint16_t>(0x6041, 0, [&, node](std::error_code ec, std::uint16_t sw) {
         if (ec) return fail("statusword", ec);

@@ -64,6 +64,27 @@ std::pair<std::uint8_t, std::uint8_t> parse_node_range(const std::string& s) {
   return {static_cast<std::uint8_t>(*first), static_cast<std::uint8_t>(*last)};
 }
 
+PdoMapping parse_pdo_remap(std::uint8_t node, const std::string& kind, const std::string& number,
+                           const std::vector<std::string>& entries) {
+  PdoMapping m;
+  if (kind != "rpdo" && kind != "tpdo") bad("bad PDO kind '" + kind + "' (rpdo or tpdo)");
+  m.kind = kind == "rpdo" ? PdoKind::kRpdo : PdoKind::kTpdo;
+  const auto n = to_unsigned(number, 10);
+  if (!n || *n < 1 || *n > 4) bad("bad PDO number '" + number + "' (1..4)");
+  m.number = static_cast<unsigned>(*n);
+  m.cob_id = default_pdo_cob_id(m.kind, m.number, node);
+  if (entries.size() > 8) bad("too many PDO entries (" + std::to_string(entries.size()) + ", at most 8)");
+  for (const std::string& e : entries) {
+    const auto slash = e.find('/');
+    const auto bits = slash == std::string::npos ? std::nullopt : to_unsigned(e.substr(slash + 1), 10);
+    if (!bits || *bits < 1 || *bits > 64) bad("bad PDO entry '" + e + "' (INDEX:SUB/BITS, 1..64 bits)");
+    const auto [index, sub] = parse_object(e.substr(0, slash));
+    m.entries.push_back({index, sub, static_cast<std::uint8_t>(*bits)});
+  }
+  if (m.total_bits() > 64) bad("PDO entries of " + std::to_string(m.total_bits()) + " bits (at most 64)");
+  return m;
+}
+
 std::pair<std::uint16_t, std::uint8_t> parse_object(const std::string& s) {
   const auto colon = s.find(':');
   const auto idx = to_unsigned(s.substr(0, colon), 16);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "advee/canopen/frame.hpp"
+#include "advee/canopen/pdo.hpp"
 
 namespace advee::canopen::ctl {
 
@@ -37,6 +38,11 @@ std::pair<std::uint8_t, std::uint8_t> parse_node_range(const std::string& s);
 // INDEX[:SUB], index in hex, sub-index decimal or 0x-hex.
 std::pair<std::uint16_t, std::uint8_t> parse_object(const std::string& s);
 const SdoType& parse_type(const std::string& s);
+// `pdo remap`: KIND rpdo|tpdo, NUMBER 1..4, entries INDEX:SUB/BITS (1..64
+// bits each, at most 64 in all, at most 8 entries); the mapping gets the
+// node's predefined COB-ID (valid) and transmission type 255.
+PdoMapping parse_pdo_remap(std::uint8_t node, const std::string& kind, const std::string& number,
+                           const std::vector<std::string>& entries);
 // The value's bytes for the type; numbers must fit the type (i8 300 is an
 // error, not 0x2C), hex needs pairs of hex digits.
 std::vector<std::uint8_t> encode(const SdoType& t, const std::string& v);
