@@ -15,7 +15,9 @@
 #                                (`make demo FOR=30s`)
 #
 # The interactive demo also serves the web dashboard on the host at
-# http://127.0.0.1:8080/ (ADVEE_WEB_PORT=N another port, 0 none).
+# http://127.0.0.1:8080/ (ADVEE_WEB_PORT=N another port, 0 none), with one
+# operator, "operator", whose random password this run creates and prints
+# (build/demo/web-operators; docs/web-dashboard.md "Security model").
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
@@ -55,6 +57,17 @@ if [ "$web_port" != 0 ] && (exec 3<>"/dev/tcp/127.0.0.1/$web_port") 2>/dev/null;
 	say "port $web_port is in use on this host: no web dashboard (ADVEE_WEB_PORT=N picks another)"
 	web_port=0
 fi
-[ "$web_port" != 0 ] && export VMTEST_HOSTFWD=$web_port
+if [ "$web_port" != 0 ]; then
+	export VMTEST_HOSTFWD=$web_port
+	# A new password for every run, only its hash on disk; the guest reads
+	# the file over the read-only 9p root (demo-guest.sh: --operators).
+	mkdir -p "$BUILD/demo"
+	rm -f "$BUILD/demo/web-operators"
+	web_pw=$("$BUILD/userland/web/advee-web" --operators "$BUILD/demo/web-operators" passwd operator --random 2>/dev/null) ||
+		die "advee-web passwd failed"
+	say "web dashboard: http://127.0.0.1:$web_port/ - log in as: operator  password: $web_pw"
+	say "(a phone-sized window works too; docs/demo.md \"Driving from the web page\")"
+	sleep 3
+fi
 VMTEST_APPEND="advee.demo=tui advee.rows=$rows advee.cols=$cols advee.term=${TERM:-vt100}" \
 	exec "$TOP/tests/harness/vm-x86.sh" --lane demo --interactive --run "$TOP/tests/harness/demo-guest.sh"

@@ -28,6 +28,22 @@ else
 	say "all ${#pkgs[@]} Debian packages present"
 fi
 
+# The dashboard's real-browser tests: puppeteer-core from npm (the versions
+# of userland/web/tests/browser/package-lock.json), driving Debian's chromium.
+# Node and npm: Debian's npm package unless a node with npm is there already.
+if ! command -v npm >/dev/null; then
+	[ "$(id -u)" = 0 ] || die "npm missing: run as root or apt-get install npm"
+	apt-get install -y -q --no-install-recommends npm >"${TMPDIR:-/tmp}/advee-apt.log" 2>&1 ||
+		die "apt-get install npm failed (log: ${TMPDIR:-/tmp}/advee-apt.log)"
+fi
+browser_tests=$TOP/userland/web/tests/browser
+if ! cmp -s "$browser_tests/package-lock.json" "$browser_tests/node_modules/.advee-lock" 2>/dev/null; then
+	say "npm ci: puppeteer-core for the dashboard's browser tests"
+	(cd "$browser_tests" && PUPPETEER_SKIP_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null) ||
+		die "npm ci in $browser_tests failed"
+	cp "$browser_tests/package-lock.json" "$browser_tests/node_modules/.advee-lock"
+fi
+
 # The x86_64 VM lane boots the newest installed 6.1 amd64 kernel that has headers.
 kver=$("$TOP/scripts/kver.sh")
 [ "$kver" != none ] || die "no amd64 6.1 kernel with headers after install"

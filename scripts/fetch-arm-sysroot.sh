@@ -25,7 +25,7 @@ libgpiod-dev libgpiod2 libyaml-cpp-dev libyaml-cpp0.7
 libsystemd-dev libsystemd0 libcap2 libgcrypt20 libgpg-error0 liblz4-1 liblzma5 libzstd1
 libspdlog-dev libspdlog1.10 libfmt-dev libfmt9
 libncurses-dev libncurses6 libncursesw6 libtinfo6
-libeigen3-dev libcli11-dev nlohmann-json3-dev libwebsocketpp-dev libasio-dev)
+libeigen3-dev libcli11-dev nlohmann-json3-dev libwebsocketpp-dev libasio-dev libsodium-dev libsodium23)
 sysroot=$cache/sysroot
 stamp=$sysroot/.advee-packages
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "${pkgs[*]}" ]; then

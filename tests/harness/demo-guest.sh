@@ -84,9 +84,11 @@ web_up() {
 	[ -n "$web_port" ] && [ -x "$web" ] || return 0
 	modprobe virtio_net && ip link set eth0 up && ip addr add 10.0.2.15/24 dev eth0 ||
 		{ echo "web dashboard: no guest network (virtio_net), not started"; return 0; }
+	# The operator's password file scripts/demo.sh wrote on the host.
 	stack_bg advee-web "$web" --listen "0.0.0.0:$web_port" --root "$STACK_USERLAND_SRC/web/static" \
-		--robot "$ROBOTSIM_CONF/robot.yaml" --map "$ROBOTSIM_CONF/room.yaml"
-	echo "Web dashboard: http://127.0.0.1:$web_port/ (open it on the host)"
+		--robot "$ROBOTSIM_CONF/robot.yaml" --map "$ROBOTSIM_CONF/room.yaml" \
+		--operators "$VMTEST_BUILD/demo/web-operators"
+	echo "Web dashboard: http://127.0.0.1:$web_port/ (open it on the host; log in as operator, password as printed before the boot)"
 	sleep 2
 }
 

@@ -2,9 +2,14 @@
 // Built as C++17: see bridge_server.hpp.
 #include "advee/web/bridge_server.hpp"
 
+#include <asio/post.hpp>
 #include <asio/steady_timer.hpp>
+#include <asio/thread_pool.hpp>
+#include <atomic>
 #include <chrono>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <websocketpp/config/asio_no_tls.hpp>
@@ -12,6 +17,10 @@
 
 #include "advee/web/client_queue.hpp"
 #include "advee/web/history.hpp"
+#include "advee/web/http_auth.hpp"
+#include "advee/web/login_limiter.hpp"
+#include "advee/web/password_file.hpp"
+#include "advee/web/session_store.hpp"
 #include "advee/web/static_files.hpp"
 
 namespace advee::web {
@@ -22,6 +31,16 @@ using Hdl = websocketpp::connection_hdl;
 
 constexpr std::size_t kMaxSnapshotKeys = 1024;
 constexpr int kStatusEveryFlushes = 10;
+constexpr std::size_t kMaxHttpBody = 4096;
+// Password checks run off the io thread (each takes ~0.1 s and 64 MiB);
+// beyond this many at once a login is answered 503.
+constexpr int kMaxLoginsInFlight = 2;
+
+// Keys in the order written: channel first, as in every other frame.
+using json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+std::string json_reply(const json& j) { return j.dump(); }
 
 std::int64_t utime_now() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -33,11 +52,23 @@ std::int64_t utime_now() {
 struct BridgeServer::Impl {
   struct Client {
     ClientQueue queue;
+    std::string token;    // the session cookie sent with the upgrade ("" = none)
+    std::string address;  // the peer's IP address
+    bool driving = false; // the last drive command was not a stop
+    Clock::time_point last_drive{};
   };
 
   asio::io_context& io;
   BridgeOptions opt;
   Log log;
+  Control control;
+  SessionStore sessions;
+  LoginLimiter limiter;
+  asio::thread_pool login_pool{1};
+  std::atomic<int> logins_in_flight{0};
+  std::optional<Hdl> holder;  // the connection holding the control lease
+  std::string holder_name;
+  std::uint64_t refused = 0;
   Server server;
   asio::steady_timer flush_timer;
   std::map<Hdl, Client, std::owner_less<Hdl>> clients;
@@ -48,12 +79,20 @@ struct BridgeServer::Impl {
   int flushes = 0;
   bool stopping = false;
 
-  Impl(asio::io_context& io_, BridgeOptions o, Log l)
+  Impl(asio::io_context& io_, BridgeOptions o, Log l, Control c)
       : io(io_),
         opt(std::move(o)),
         log(std::move(l)),
+        control(std::move(c)),
         flush_timer(io_),
-        history(opt.history_s, opt.history_max) {}
+        history(opt.history_s, opt.history_max) {
+    init_crypto();
+    if (!opt.password_file.empty()) {
+      const auto n = PasswordFile::load(opt.password_file).size();
+      log(opt.password_file.string() + ": " + std::to_string(n) + " operator(s)" +
+          (n == 0 ? " (nobody can log in: advee-web passwd NAME)" : ""));
+    }
+  }
 
   void start() {
     server.clear_access_channels(websocketpp::log::alevel::all);
@@ -66,6 +105,10 @@ struct BridgeServer::Impl {
     server.set_open_handler([this](Hdl h) { on_open(h); });
     server.set_close_handler([this](Hdl h) { on_close(h); });
     server.set_fail_handler([this](Hdl h) { on_fail(h); });
+    server.set_validate_handler([this](Hdl h) { return on_validate(h); });
+    server.set_message_handler([this](Hdl h, Server::message_ptr m) { on_message(h, m); });
+    server.set_max_message_size(opt.max_message_bytes);
+    server.set_max_http_body_size(kMaxHttpBody);
 
     const auto addr = asio::ip::make_address(opt.address, ec);
     if (ec) throw std::runtime_error("bad listen address " + opt.address + ": " + ec.message());
@@ -83,6 +126,7 @@ struct BridgeServer::Impl {
     flush_timer.async_wait([this](const std::error_code& ec) {
       if (ec || stopping) return;
       if (++flushes % kStatusEveryFlushes == 0) send_status();
+      check_drive_timeout();
       for (auto& [hdl, client] : clients) flush(hdl, client);
       arm_flush_timer();
     });
@@ -93,13 +137,38 @@ struct BridgeServer::Impl {
     auto con = server.get_con_from_hdl(h, ec);
     if (ec) return;
     const std::string& method = con->get_request().get_method();
+    const std::string target = con->get_resource();
     con->append_header("Cache-Control", "no-cache");
+    if (method == "POST" && (target == "/login" || target == "/logout")) {
+      con->append_header("Content-Type", "application/json");
+      if (!origin_allowed(con->get_request_header("Origin"), con->get_request_header("Host"),
+                          opt.allowed_origins)) {
+        con->set_body(json_reply({{"error", "wrong or missing Origin"}}));
+        con->set_status(websocketpp::http::status_code::forbidden);
+        return;
+      }
+      if (target == "/login")
+        on_login(con);
+      else
+        on_logout(con);
+      return;
+    }
     if (method != "GET" && method != "HEAD") {
       con->set_status(websocketpp::http::status_code::method_not_allowed);
       con->append_header("Allow", "GET, HEAD");
       return;
     }
-    const std::string target = con->get_resource();
+    if (target == "/session") {
+      const auto token = session_cookie_value(con->get_request_header("Cookie"));
+      const auto user = sessions.user(token);
+      con->append_header("Content-Type", "application/json");
+      con->set_body(json_reply({{"user", user ? json(*user) : json(nullptr)},
+                                {"view_requires_login", opt.view_requires_login},
+                                {"max_speed_mps", opt.drive_limits.max_speed_mps},
+                                {"max_steering_rad", opt.drive_limits.max_steering_rad}}));
+      con->set_status(websocketpp::http::status_code::ok);
+      return;
+    }
     if (target == "/scene.json" || target.rfind("/scene.json?", 0) == 0) {
       con->append_header("Content-Type", "application/json");
       con->set_body(opt.scene_json);
@@ -119,9 +188,213 @@ struct BridgeServer::Impl {
     con->set_status(websocketpp::http::status_code::ok);
   }
 
+  static std::string peer_address(const Server::connection_ptr& con) {
+    std::error_code ec;
+    const auto ep = con->get_raw_socket().remote_endpoint(ec);
+    if (ec) return "?";
+    auto a = ep.address();
+    if (a.is_v6() && a.to_v6().is_v4_mapped()) a = asio::ip::make_address_v4(asio::ip::v4_mapped, a.to_v6());
+    return a.to_string();
+  }
+
+  // POST /login {"user":..,"password":..}: 200 + the cookie, 401, 429 (rate
+  // limit, Retry-After), 400, 503 (too many checks at once).
+  void on_login(const Server::connection_ptr& con) {
+    const std::string address = peer_address(con);
+    const auto wait = limiter.retry_after(address);
+    if (wait > Clock::duration::zero()) {
+      const auto s = std::chrono::duration_cast<std::chrono::seconds>(wait).count() + 1;
+      con->append_header("Retry-After", std::to_string(s));
+      con->set_body(json_reply({{"error", "too many failed logins: try again in " + std::to_string(s) + " s"}}));
+      con->set_status(websocketpp::http::status_code::too_many_requests);
+      log("login refused for " + address + ": rate limit");
+      return;
+    }
+    const json body = json::parse(con->get_request_body(), nullptr, false);
+    if (!body.is_object() || !body.contains("user") || !body["user"].is_string() || !body.contains("password") ||
+        !body["password"].is_string() || !valid_operator_name(body["user"].get<std::string>())) {
+      con->set_body(json_reply({{"error", "expected {\"user\":..,\"password\":..}"}}));
+      con->set_status(websocketpp::http::status_code::bad_request);
+      return;
+    }
+    if (opt.password_file.empty() || logins_in_flight >= kMaxLoginsInFlight) {
+      con->set_body(json_reply({{"error", opt.password_file.empty() ? "no operators configured" : "busy"}}));
+      con->set_status(websocketpp::http::status_code::service_unavailable);
+      return;
+    }
+    if (con->defer_http_response()) return;
+    ++logins_in_flight;
+    // The file is read for every login: advee-web passwd needs no restart.
+    asio::post(login_pool, [this, con, address, user = body["user"].get<std::string>(),
+                            password = body["password"].get<std::string>()] {
+      bool ok = false;
+      std::string problem;
+      try {
+        ok = PasswordFile::load(opt.password_file).check(user, password);
+      } catch (const std::exception& e) {
+        problem = e.what();
+      }
+      asio::post(io, [this, con, address, user, ok, problem] { finish_login(con, address, user, ok, problem); });
+    });
+  }
+
+  void finish_login(const Server::connection_ptr& con, const std::string& address, const std::string& user,
+                    bool ok, const std::string& problem) {
+    --logins_in_flight;
+    if (stopping) return;
+    if (!problem.empty()) log(problem);
+    if (ok) {
+      limiter.succeeded(address);
+      con->append_header("Set-Cookie", session_set_cookie(sessions.create(user), opt.secure_cookie));
+      con->set_body(json_reply({{"user", user}}));
+      con->set_status(websocketpp::http::status_code::ok);
+      log("login: " + user + " from " + address);
+    } else {
+      limiter.failed(address);
+      con->set_body(json_reply({{"error", "wrong name or password"}}));
+      con->set_status(websocketpp::http::status_code::unauthorized);
+      log("login failed: " + user + " from " + address);
+    }
+    std::error_code ec;
+    con->send_http_response(ec);
+  }
+
+  void on_logout(const Server::connection_ptr& con) {
+    const auto token = session_cookie_value(con->get_request_header("Cookie"));
+    const auto user = sessions.user(token);
+    sessions.revoke(token);
+    // The session's WebSockets lose the lease (and stop the robot).
+    if (holder && clients.count(*holder) && clients[*holder].token == token && !token.empty())
+      drop_lease("logged out");
+    con->append_header("Set-Cookie", session_clear_cookie(opt.secure_cookie));
+    con->set_body(json_reply({{"user", nullptr}}));
+    con->set_status(websocketpp::http::status_code::ok);
+    if (user) log("logout: " + *user + " from " + peer_address(con));
+  }
+
+  // The WebSocket upgrade: our own page's Origin only; a session when
+  // viewing needs a login.
+  bool on_validate(Hdl h) {
+    std::error_code ec;
+    auto con = server.get_con_from_hdl(h, ec);
+    if (ec || stopping) return false;
+    if (!origin_allowed(con->get_request_header("Origin"), con->get_request_header("Host"),
+                        opt.allowed_origins)) {
+      log("WebSocket refused for " + peer_address(con) + ": Origin '" + con->get_request_header("Origin") + "'");
+      con->set_status(websocketpp::http::status_code::forbidden);
+      return false;
+    }
+    if (opt.view_requires_login && !sessions.user(session_cookie_value(con->get_request_header("Cookie")))) {
+      con->set_status(websocketpp::http::status_code::unauthorized);
+      return false;
+    }
+    return true;
+  }
+
+  bool is_holder(const Hdl& h) const { return holder && !holder->owner_before(h) && !h.owner_before(*holder); }
+
+  void send_to(Hdl h, const json& j) {
+    std::error_code ec;
+    server.send(h, j.dump(), websocketpp::frame::opcode::text, ec);
+  }
+
+  // WEB_LEASE to every client: who holds control, and whether it is them.
+  void send_lease(const std::string& event = "", const std::string& by = "") {
+    for (auto& [hdl, client] : clients) {
+      json j = {{"channel", "WEB_LEASE"},
+                {"holder", holder ? json(holder_name) : json(nullptr)},
+                {"you", is_holder(hdl)}};
+      if (!event.empty()) j["event"] = event;
+      if (!by.empty()) j["by"] = by;
+      send_to(hdl, j);
+    }
+  }
+
+  Operator operator_of(const Client& c, const std::string& name) const { return {name, c.address}; }
+
+  void stop_robot(const Operator& who, const std::string& why) {
+    ControlRequest stop;
+    stop.kind = ControlRequest::Kind::stop;
+    log("control: the bridge stops the robot: " + why);
+    if (control) control(stop, who, true);
+  }
+
+  // The holder loses the lease (disconnect, logout, take-over); the robot stops.
+  void drop_lease(const std::string& why, const std::string& by = "") {
+    if (!holder) return;
+    const auto it = clients.find(*holder);
+    stop_robot({holder_name, it != clients.end() ? it->second.address : "?"}, why);
+    if (it != clients.end()) it->second.driving = false;
+    holder.reset();
+    holder_name.clear();
+    send_lease(by.empty() ? "released" : "taken", by);
+  }
+
+  void check_drive_timeout() {
+    if (!holder) return;
+    const auto it = clients.find(*holder);
+    if (it == clients.end() || !it->second.driving) return;
+    if (Clock::now() - it->second.last_drive < std::chrono::milliseconds(opt.drive_timeout_ms)) return;
+    it->second.driving = false;
+    stop_robot(operator_of(it->second, holder_name),
+               "no drive command for " + std::to_string(opt.drive_timeout_ms) + " ms");
+  }
+
+  void refuse(Hdl h, const std::string& why) {
+    ++refused;
+    send_to(h, {{"channel", "WEB_CONTROL"}, {"ok", false}, {"error", why}});
+  }
+
+  void on_message(Hdl h, const Server::message_ptr& m) {
+    const auto it = clients.find(h);
+    if (it == clients.end() || stopping) return;
+    Client& client = it->second;
+    if (m->get_opcode() != websocketpp::frame::opcode::text) return refuse(h, "not a text message");
+    const auto parsed = parse_control_request(m->get_payload(), opt.drive_limits);
+    if (!parsed.request) return refuse(h, parsed.error);
+    const ControlRequest& r = *parsed.request;
+    const auto user = sessions.user(client.token);
+    if (!user) return refuse(h, "login required");
+    const bool holds = is_holder(h);
+    using K = ControlRequest::Kind;
+    if (r.kind == K::take) {
+      if (holds) return send_lease();
+      if (holder && !r.force) return refuse(h, "control is held by " + holder_name);
+      const std::string previous = holder_name;
+      if (holder) drop_lease("taken over by " + *user, *user);
+      holder = h;
+      holder_name = *user;
+      if (control) control(r, operator_of(client, *user), true);
+      return send_lease("taken", previous.empty() ? "" : *user);
+    }
+    if (!holds) return refuse(h, holder ? "control is held by " + holder_name : "take control first");
+    if (r.kind == K::release) {
+      if (control) control(r, operator_of(client, *user), true);
+      return drop_lease("released");
+    }
+    const bool moving = r.kind == K::drive && (r.speed_mps != 0 || r.steering_rad != 0);
+    // Driving is logged when it starts and stops, not at every command.
+    const bool audit = r.kind != K::drive ? (r.kind != K::stop || client.driving) : (moving && !client.driving);
+    if (r.kind == K::drive || r.kind == K::stop) {
+      client.driving = moving;
+      client.last_drive = Clock::now();
+    }
+    if (control) control(r, operator_of(client, *user), audit);
+    if (r.kind != K::drive && r.kind != K::stop)
+      send_to(h, {{"channel", "WEB_CONTROL"}, {"ok", true}, {"request", describe_request(r)}});
+  }
+
   void on_open(Hdl h) {
     if (stopping) return;
     auto& client = clients[h];
+    {
+      std::error_code ec;
+      auto con = server.get_con_from_hdl(h, ec);
+      if (!ec) {
+        client.token = session_cookie_value(con->get_request_header("Cookie"));
+        client.address = peer_address(con);
+      }
+    }
     // First the newest of everything (small: the page shows the present at
     // once), then the history as one frame, {"channel":"WEB_HISTORY",
     // "messages":[...]}, for trails and plots; straight to the socket (it is
@@ -140,11 +413,13 @@ struct BridgeServer::Impl {
       std::error_code ec;
       server.send(h, bundle, websocketpp::frame::opcode::text, ec);
     }
+    send_lease();
   }
 
   void forget(Hdl h) {
     const auto it = clients.find(h);
     if (it == clients.end()) return;
+    if (is_holder(h)) drop_lease("the operator's page disconnected");
     dropped_closed += it->second.queue.dropped();
     if (it->second.queue.dropped() > 0)
       log("client closed after " + std::to_string(it->second.queue.dropped()) +
@@ -209,7 +484,9 @@ struct BridgeServer::Impl {
 
   void shutdown() {
     if (stopping) return;
+    if (holder) drop_lease("advee-web stops");
     stopping = true;
+    login_pool.join();
     flush_timer.cancel();
     std::error_code ec;
     server.stop_listening(ec);
@@ -221,8 +498,8 @@ struct BridgeServer::Impl {
   }
 };
 
-BridgeServer::BridgeServer(asio::io_context& io, BridgeOptions options, Log log)
-    : impl_(std::make_unique<Impl>(io, std::move(options), std::move(log))) {
+BridgeServer::BridgeServer(asio::io_context& io, BridgeOptions options, Log log, Control control)
+    : impl_(std::make_unique<Impl>(io, std::move(options), std::move(log), std::move(control))) {
   impl_->start();
 }
 
@@ -241,6 +518,7 @@ BridgeStats BridgeServer::stats() const {
   s.clients = impl_->clients.size();
   s.messages = impl_->messages;
   s.dropped = impl_->dropped_closed;
+  s.refused = impl_->refused;
   for (const auto& [hdl, client] : impl_->clients) s.dropped += client.queue.dropped();
   return s;
 }

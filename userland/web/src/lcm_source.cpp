@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "advee/msgs/bus.hpp"
+#include "advee/msgs/describe.hpp"
 #include "advee/web/message_json.hpp"
 
 namespace advee::web {
@@ -29,6 +30,8 @@ void LcmSource::on_message(const lcm::ReceiveBuffer* rb, const std::string& chan
     ++self->undecodable_;
     return;
   }
+  // The page's list of recent messages shows the same line as the console tools.
+  (*j)["line"] = msgs::describe(*rb, channel);
   self->sink_(*j);
 }
 

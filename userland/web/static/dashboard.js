@@ -24,6 +24,7 @@ const st = {
   speeds: {cmd: [], act: [], odo: []},
   paused: null,         // latest of LL_EVENT_STOP.stop and LL_DATA_POWER.paused
   errors: [],
+  recent: [],           // newest first: {channel, utime, line}
   bridge: null,
 };
 
@@ -87,7 +88,7 @@ const handlers = {
   },
   CM_DATA_ERROR(m) {
     st.errors.unshift(m);
-    st.errors.length = Math.min(st.errors.length, 20);
+    st.errors.length = Math.min(st.errors.length, 50);
   },
   LL_DATA_ODO(m) {
     pushSample(st.speeds.odo, m.utime / 1e6, m.speed_mps);
@@ -167,7 +168,7 @@ const handlers = {
     box.replaceChildren();
     (m.on || []).forEach((on, i) => {
       const a = m.current_a[i];
-      box.append(el("span", {class: "out" + (on ? " on" : ""), id: "output-" + i},
+      box.append(el("button", {class: "out" + (on ? " on" : ""), id: "output-" + i, "data-output": i},
                     `out ${i} ${on ? "on" : "off"}${a !== null && a >= 0 ? " " + fmt(a, 2) + " A" : ""}`));
     });
     st.paused = !!m.paused;
@@ -177,6 +178,12 @@ const handlers = {
   },
   WEB_BRIDGE(m) {
     st.bridge = m;
+  },
+  WEB_LEASE(m) {
+    control.onLease(m);
+  },
+  WEB_CONTROL(m) {
+    control.onReply(m);
   },
   // The bridge's last minutes, in order, as one frame right after the
   // newest values: they fill the trails and plots, the present stays. The
@@ -191,7 +198,13 @@ const handlers = {
   },
 };
 
+const RECENT_MAX = 40;
 function dispatch(m, replay) {
+  if (!replay && m.line) {
+    // describe()'s line without its "CHANNEL t=MONOTONIC" head: shown apart.
+    st.recent.unshift({channel: m.channel, utime: m.utime, line: m.line.replace(/^\S+ t=\S+ ?/, "")});
+    st.recent.length = Math.min(st.recent.length, RECENT_MAX);
+  }
   const h = handlers[m.channel];
   if (h) h(m, !!replay);
 }
@@ -210,14 +223,16 @@ function onMessage(ev) {
 // ---- connection -----------------------------------------------------------
 
 function connect() {
-  const ws = new WebSocket(`ws://${location.host}/`);
+  const ws = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/`);
   ws.onopen = () => {
     st.connected = true;
+    control.onSocket(ws);
     updateHeader();
   };
   ws.onmessage = onMessage;
   ws.onclose = () => {
     st.connected = false;
+    control.onSocket(null);
     updateHeader();
     setTimeout(connect, 1000);
   };
@@ -256,6 +271,13 @@ function drawModules() {
   const body = $("modules").querySelector("tbody");
   const names = [...st.modules.keys()].sort();
   body.replaceChildren();
+  const sel = $("state-target");
+  const want = ["*", ...names];
+  if ([...sel.options].map((o) => o.value).join() !== want.join()) {
+    const keep = sel.value;
+    sel.replaceChildren(...want.map((n) => el("option", {value: n}, n === "*" ? "every module (*)" : n)));
+    sel.value = want.includes(keep) ? keep : "*";
+  }
   const t = nowS();
   for (const name of names) {
     const m = st.modules.get(name);
@@ -276,10 +298,24 @@ function drawErrors() {
   const ul = $("errors");
   ul.replaceChildren();
   if (!st.errors.length) ul.append(el("li", {class: "none"}, "none"));
-  for (const e of st.errors.slice(0, 8)) {
+  const min = Number($("error-filter").value);
+  const shown = st.errors.filter((e) => e.severity >= min);
+  if (st.errors.length && !shown.length) ul.append(el("li", {class: "none"}, "none at this severity"));
+  for (const e of shown.slice(0, 12)) {
     const when = new Date(e.utime / 1000).toLocaleTimeString();
     ul.append(el("li", {class: "sev" + e.severity},
                  `${when} ${e.module}: ${e.text}${e.number ? " (" + e.number + ")" : ""}${e.fatal ? " FATAL" : ""}`));
+  }
+}
+
+function drawRecent() {
+  const ul = $("recent");
+  ul.replaceChildren();
+  for (const r of st.recent) {
+    const when = new Date(r.utime / 1000).toLocaleTimeString();
+    const li = el("li", {}, "");
+    li.append(el("span", {class: "ch"}, r.channel), el("span", {class: "when"}, when), el("span", {}, r.line));
+    ul.append(li);
   }
 }
 
@@ -498,6 +534,7 @@ function drawAll() {
   updateHeader();
   drawModules();
   drawErrors();
+  drawRecent();
   drawMap();
   drawPlot($("plot-temp"), [...st.temps.entries()].map(([label, data]) => ({label, data})));
   drawPlot($("plot-speed"), [
@@ -516,5 +553,6 @@ fetch("scene.json")
   })
   .catch(() => {})
   .finally(connect);
+$("error-filter").addEventListener("change", drawErrors);
 setInterval(drawAll, 1000);  // ages and the moving time axis
 drawAll();

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
 // The bridge over real sockets: the page's files over HTTP, messages over a
 // WebSocket (handshake and frames by hand, as a browser sends them), the
-// snapshot for a new client, and a client that does not read.
+// snapshot for a new client, and a client that does not read; login, the
+// Origin check, the control lease and the stops the bridge sends itself.
 #include "advee/web/bridge_server.hpp"
 
 #include <gtest/gtest.h>
@@ -12,8 +13,14 @@
 #include <asio/read.hpp>
 #include <asio/write.hpp>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <future>
+#include <mutex>
 #include <thread>
+#include <vector>
+
+#include "advee/web/password_file.hpp"
 
 namespace advee::web {
 namespace {
@@ -29,7 +36,23 @@ class Bridge : public ::testing::Test {
     opt.scene_json = R"({"robot":{"wheelbase_m":0.62}})";
     opt.max_buffered_bytes = 64 * 1024;
     opt.flush_interval_ms = 20;
-    server_.emplace(io_, opt, [](const std::string&) {});
+    init_crypto();
+    char tmpl[] = "/tmp/advee-web-bridge-XXXXXX";
+    ASSERT_NE(::mkdtemp(tmpl), nullptr);
+    dir_ = tmpl;
+    PasswordFile operators;
+    operators.set("alice", "alice-password");
+    operators.set("bob", "bob-password");
+    operators.save(dir_ / "operators");
+    opt.password_file = dir_ / "operators";
+    opt.drive_limits = {0.5, 0.5};
+    opt.drive_timeout_ms = 60000;  // a test that wants it sets it
+    configure(opt);
+    server_.emplace(io_, opt, [](const std::string& s) { if (std::getenv("WEB_TEST_LOG")) std::fprintf(stderr, "log: %s\n", s.c_str()); },
+                    [this](const ControlRequest& r, const Operator& who, bool audit) {
+                      std::lock_guard lock(mutex_);
+                      control_.push_back({r, who, audit});
+                    });
     work_.emplace(asio::make_work_guard(io_));
     thread_ = std::jthread([this] { io_.run(); });
   }
@@ -39,7 +62,9 @@ class Bridge : public ::testing::Test {
     io_.stop();
     thread_.join();
     server_.reset();
+    std::filesystem::remove_all(dir_);
   }
+  virtual void configure(BridgeOptions&) {}
   // Runs f on the server's thread and waits for it.
   template <typename F>
   void on_io(F f) {
@@ -73,20 +98,90 @@ class Bridge : public ::testing::Test {
     asio::read(s, asio::dynamic_buffer(out), ec);  // until the server closes
     return out;
   }
-  tcp::socket websocket() {
+  // Status line + headers + body of one HTTP/1.1 POST.
+  std::string http_post(const std::string& target, const std::string& body, const std::string& headers) {
     auto s = connect();
-    asio::write(s, asio::buffer(std::string(
-                       "GET / HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
-                       "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n")));
+    asio::write(s, asio::buffer("POST " + target + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n" + headers +
+                                "Content-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
+                                "\r\n\r\n" + body));
+    std::string out;
+    std::error_code ec;
+    asio::read(s, asio::dynamic_buffer(out), ec);
+    return out;
+  }
+  // The session cookie of a successful login ("" when refused).
+  std::string login(const std::string& user, const std::string& password) {
+    const auto r = http_post("/login", R"({"user":")" + user + R"(","password":")" + password + R"("})",
+                             "Origin: http://x\r\n");
+    const auto at = r.find("advee_session=");
+    if (r.rfind("HTTP/1.1 200", 0) != 0 || at == std::string::npos) return "";
+    return r.substr(at + 14, 64);
+  }
+  // The upgrade's answer head; `s` is left open after a 101.
+  std::string upgrade(tcp::socket& s, const std::string& headers) {
+    asio::write(s, asio::buffer("GET / HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n" +
+                                headers +
+                                "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"));
     // Byte by byte: the first frames may follow the headers at once.
     std::string head;
     while (head.size() < 4 || head.compare(head.size() - 4, 4, "\r\n\r\n") != 0) {
       char c;
-      asio::read(s, asio::buffer(&c, 1));
+      std::error_code ec;
+      asio::read(s, asio::buffer(&c, 1), ec);
+      if (ec) break;
       head.push_back(c);
     }
+    return head;
+  }
+  tcp::socket websocket(const std::string& cookie = "") {
+    auto s = connect();
+    const auto head =
+        upgrade(s, "Origin: http://x\r\n" + (cookie.empty() ? "" : "Cookie: advee_session=" + cookie + "\r\n"));
     EXPECT_EQ(head.rfind("HTTP/1.1 101", 0), 0u) << head;
     return s;
+  }
+  // One masked client frame (opcode 1 = text, 2 = binary).
+  static void send_frame(tcp::socket& s, const std::string& payload, std::uint8_t opcode = 1) {
+    std::string f;
+    f.push_back(static_cast<char>(0x80 | opcode));
+    if (payload.size() < 126) {
+      f.push_back(static_cast<char>(0x80 | payload.size()));
+    } else if (payload.size() < 65536) {
+      f.push_back(static_cast<char>(0x80 | 126));
+      f.push_back(static_cast<char>(payload.size() >> 8));
+      f.push_back(static_cast<char>(payload.size() & 0xff));
+    } else {
+      f.push_back(static_cast<char>(0x80 | 127));
+      for (int i = 7; i >= 0; --i) f.push_back(static_cast<char>((payload.size() >> (8 * i)) & 0xff));
+    }
+    const char mask[4] = {0x12, 0x34, 0x56, 0x78};
+    f.append(mask, 4);
+    for (std::size_t i = 0; i < payload.size(); ++i) f.push_back(payload[i] ^ mask[i % 4]);
+    std::error_code ec;
+    asio::write(s, asio::buffer(f), ec);
+  }
+  struct Call {
+    ControlRequest request;
+    Operator who;
+    bool audit;
+  };
+  std::vector<Call> calls() {
+    std::vector<Call> c;
+    on_io([&] {
+      std::lock_guard lock(mutex_);
+      c = control_;
+    });
+    return c;
+  }
+  // Waits (up to 5 s) until the control sink has had `n` calls.
+  std::vector<Call> wait_calls(std::size_t n) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    auto c = calls();
+    while (c.size() < n && std::chrono::steady_clock::now() < end) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      c = calls();
+    }
+    return c;
   }
   // One unmasked server frame's text.
   static std::string read_frame(tcp::socket& s) {
@@ -117,6 +212,9 @@ class Bridge : public ::testing::Test {
   }
 
   asio::io_context io_, client_io_;
+  std::filesystem::path dir_;
+  std::mutex mutex_;
+  std::vector<Call> control_;
   std::optional<BridgeServer> server_;
   std::optional<asio::executor_work_guard<asio::io_context::executor_type>> work_;
   std::jthread thread_;
@@ -198,6 +296,162 @@ TEST_F(Bridge, SlowClientGetsTheNewestAndDropsAreCounted) {
   EXPECT_LT(received, sent / 2);
   std::printf("slow client: %d of %d received\n", received, sent);
   EXPECT_EQ(static_cast<std::uint64_t>(received) + stats().dropped, static_cast<std::uint64_t>(sent));
+}
+
+
+TEST_F(Bridge, WebSocketNeedsThePagesOwnOrigin) {
+  for (const char* h : {"", "Origin: http://evil.example\r\n", "Origin: null\r\n"}) {
+    auto s = connect();
+    const auto head = upgrade(s, h);
+    EXPECT_EQ(head.rfind("HTTP/1.1 403", 0), 0u) << h << head;
+  }
+  EXPECT_EQ(stats().clients, 0u);
+}
+
+TEST_F(Bridge, LoginSetsAStrictHttpOnlyCookieAndWrongPasswordsAreRefused) {
+  const auto ok = http_post("/login", R"({"user":"alice","password":"alice-password"})", "Origin: http://x\r\n");
+  EXPECT_EQ(ok.rfind("HTTP/1.1 200", 0), 0u) << ok;
+  EXPECT_NE(ok.find("Set-Cookie: advee_session="), std::string::npos);
+  EXPECT_NE(ok.find("; Path=/; HttpOnly; SameSite=Strict"), std::string::npos);
+  EXPECT_EQ(http_post("/login", R"({"user":"alice","password":"wrong"})", "Origin: http://x\r\n").rfind("HTTP/1.1 401", 0), 0u);
+  EXPECT_EQ(http_post("/login", R"({"user":"mallory","password":"alice-password"})", "Origin: http://x\r\n")
+                .rfind("HTTP/1.1 401", 0), 0u);
+  EXPECT_EQ(http_post("/login", R"({"user":"alice","password":"alice-password"})", "Origin: http://evil\r\n")
+                .rfind("HTTP/1.1 403", 0), 0u);
+  EXPECT_EQ(http_post("/login", "not json", "Origin: http://x\r\n").rfind("HTTP/1.1 400", 0), 0u);
+}
+
+TEST_F(Bridge, FailedLoginsAreRateLimited) {
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(login("alice", "guess" + std::to_string(i)), "");
+  const auto r = http_post("/login", R"({"user":"alice","password":"alice-password"})", "Origin: http://x\r\n");
+  EXPECT_EQ(r.rfind("HTTP/1.1 429", 0), 0u) << r;  // even the right password: the address waits
+  EXPECT_NE(r.find("Retry-After: "), std::string::npos);
+}
+
+TEST_F(Bridge, ControlNeedsALoginAndTheLeaseThenDisconnectStops) {
+  auto viewer = websocket();  // no cookie: sees, cannot control
+  send_frame(viewer, R"({"type":"take"})");
+  send_frame(viewer, R"({"type":"drive","speed_mps":0.2,"steering_rad":0})");
+  EXPECT_NE(read_until_prefix(viewer, R"({"channel":"WEB_CONTROL")").find("login required"), std::string::npos);
+  auto forged = websocket(std::string(64, 'a'));
+  send_frame(forged, R"({"type":"take"})");
+  EXPECT_NE(read_until_prefix(forged, R"({"channel":"WEB_CONTROL")").find("login required"), std::string::npos);
+
+  const auto cookie = login("alice", "alice-password");
+  ASSERT_EQ(cookie.size(), 64u);
+  {
+    auto op = websocket(cookie);
+    send_frame(op, R"({"type":"drive","speed_mps":0.2,"steering_rad":0})");
+    EXPECT_NE(read_until_prefix(op, R"({"channel":"WEB_CONTROL")").find("take control first"), std::string::npos);
+    EXPECT_EQ(calls().size(), 0u);
+    send_frame(op, R"({"type":"take"})");
+    EXPECT_NE(read_until_prefix(op, R"({"channel":"WEB_LEASE","holder":"alice")").find(R"("you":true)"),
+              std::string::npos);
+    send_frame(op, R"({"type":"drive","speed_mps":0.2,"steering_rad":-0.1})");
+    auto c = wait_calls(2);
+    ASSERT_EQ(c.size(), 2u);
+    EXPECT_EQ(c[0].request.kind, ControlRequest::Kind::take);
+    EXPECT_EQ(c[1].request.kind, ControlRequest::Kind::drive);
+    EXPECT_DOUBLE_EQ(c[1].request.speed_mps, 0.2);
+    EXPECT_DOUBLE_EQ(c[1].request.steering_rad, -0.1);
+    EXPECT_EQ(c[1].who.name, "alice");
+    EXPECT_EQ(c[1].who.address, "127.0.0.1");
+    EXPECT_TRUE(c[1].audit);  // driving starts: logged
+    send_frame(op, R"({"type":"drive","speed_mps":0.3,"steering_rad":-0.1})");
+    c = wait_calls(3);
+    ASSERT_EQ(c.size(), 3u);
+    EXPECT_FALSE(c[2].audit);  // not every command
+    // The viewer still cannot, while alice holds the lease.
+    send_frame(viewer, R"({"type":"stop"})");
+    read_until_prefix(viewer, R"({"channel":"WEB_CONTROL")");
+  }  // the operator's socket closes: the bridge stops the robot
+  const auto c = wait_calls(4);
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c[3].request.kind, ControlRequest::Kind::stop);
+  EXPECT_TRUE(c[3].audit);
+  EXPECT_NE(read_until_prefix(viewer, R"({"channel":"WEB_LEASE")").find(R"("holder":null)"), std::string::npos);
+}
+
+TEST_F(Bridge, LogoutEndsControl) {
+  const auto cookie = login("alice", "alice-password");
+  auto op = websocket(cookie);
+  send_frame(op, R"({"type":"take"})");
+  read_until_prefix(op, R"({"channel":"WEB_LEASE","holder":"alice")");
+  EXPECT_EQ(http_post("/logout", "", "Origin: http://x\r\nCookie: advee_session=" + cookie + "\r\n").rfind("HTTP/1.1 200", 0), 0u);
+  EXPECT_NE(read_until_prefix(op, R"({"channel":"WEB_LEASE")").find(R"("holder":null)"), std::string::npos);
+  send_frame(op, R"({"type":"take"})");
+  send_frame(op, R"({"type":"drive","speed_mps":0.2,"steering_rad":0})");
+  EXPECT_NE(read_until_prefix(op, R"({"channel":"WEB_CONTROL")").find("login required"), std::string::npos);
+  const auto c = calls();
+  ASSERT_EQ(c.size(), 2u);  // take, and the stop of the logout
+  EXPECT_EQ(c[1].request.kind, ControlRequest::Kind::stop);
+}
+
+TEST_F(Bridge, ASecondOperatorTakesOverExplicitlyAndTheFirstIsTold) {
+  auto a = websocket(login("alice", "alice-password"));
+  auto b = websocket(login("bob", "bob-password"));
+  send_frame(a, R"({"type":"take"})");
+  read_until_prefix(a, R"({"channel":"WEB_LEASE","holder":"alice")");
+  send_frame(a, R"({"type":"drive","speed_mps":0.2,"steering_rad":0})");
+  send_frame(b, R"({"type":"take"})");
+  EXPECT_NE(read_until_prefix(b, R"({"channel":"WEB_CONTROL")").find("control is held by alice"), std::string::npos);
+  send_frame(b, R"({"type":"take","force":true})");
+  EXPECT_EQ(read_until_prefix(a, R"({"channel":"WEB_LEASE","holder":"bob")"),
+            R"({"channel":"WEB_LEASE","holder":"bob","you":false,"event":"taken","by":"bob"})");
+  const auto c = wait_calls(4);
+  ASSERT_EQ(c.size(), 4u);  // take, drive, the stop for alice, bob's take
+  EXPECT_EQ(c[2].request.kind, ControlRequest::Kind::stop);
+  EXPECT_EQ(c[2].who.name, "alice");
+  EXPECT_EQ(c[3].who.name, "bob");
+}
+
+TEST_F(Bridge, MalformedAndOversizedMessagesNeverReachTheControlAndTheBridgeStays) {
+  const auto cookie = login("alice", "alice-password");
+  auto op = websocket(cookie);
+  send_frame(op, R"({"type":"take"})");
+  read_until_prefix(op, R"({"channel":"WEB_LEASE","holder":"alice")");
+  const std::string bad[] = {"", "{", "[]", "null", R"({"type":"drive","speed_mps":9,"steering_rad":0})",
+                             R"({"type":"drive","speed_mps":"0.1","steering_rad":0})",
+                             R"({"type":"power","action":"reboot"})", std::string(2000, '{')};
+  for (int i = 0; i < 100; ++i) send_frame(op, bad[i % std::size(bad)]);
+  send_frame(op, R"({"type":"drive","speed_mps":0.1,"steering_rad":0})", 2);  // binary
+  for (int i = 0; i < 101; ++i) read_until_prefix(op, R"({"channel":"WEB_CONTROL","ok":false)");
+  EXPECT_EQ(calls().size(), 1u);  // the take only
+  EXPECT_EQ(stats().refused, 101u);
+  // A text frame that is not UTF-8: websocketpp closes the connection (1007);
+  // the holder's stop is sent.
+  send_frame(op, "\x80\xff");
+  auto c = wait_calls(2);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[1].request.kind, ControlRequest::Kind::stop);
+  // Over the frame limit: the connection is closed (1009), the stop sent.
+  auto op2 = websocket(cookie);
+  send_frame(op2, R"({"type":"take"})");
+  read_until_prefix(op2, R"({"channel":"WEB_LEASE","holder":"alice")");
+  send_frame(op2, std::string(64 * 1024 + 1, ' '));
+  c = wait_calls(4);
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c[3].request.kind, ControlRequest::Kind::stop);
+  auto again = websocket();  // still serving
+  EXPECT_EQ(http_get("/").rfind("HTTP/1.1 200", 0), 0u);
+}
+
+class BridgeDriveTimeout : public Bridge {
+  void configure(BridgeOptions& o) override { o.drive_timeout_ms = 200; }
+};
+
+TEST_F(BridgeDriveTimeout, DriveCommandsThatStopComingStopTheRobot) {
+  auto op = websocket(login("alice", "alice-password"));
+  send_frame(op, R"({"type":"take"})");
+  read_until_prefix(op, R"({"channel":"WEB_LEASE","holder":"alice")");
+  const auto t0 = std::chrono::steady_clock::now();
+  send_frame(op, R"({"type":"drive","speed_mps":0.2,"steering_rad":0})");
+  const auto c = wait_calls(3);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[2].request.kind, ControlRequest::Kind::stop);
+  EXPECT_GE(ms, 200);
+  std::printf("stop after the last drive command: %.0f ms (timeout 200 ms, flush every 20 ms)\n", ms);
 }
 
 }  // namespace

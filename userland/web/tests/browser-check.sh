@@ -6,9 +6,14 @@
 # loopback, ttl=0: nothing leaves the machine; port 7679 so that other
 # engineers' LCM tests on 7667 cannot mix in), publishes the known scene of
 # advee-web-test-publisher, renders the page with headless Chromium and checks
-# the DOM for the values a user would look at. Keeps the screenshot and the
-# DOM under build/web/. One TSV row per check in build/results/web.tsv
-# (name, passed, failed, skipped, status, note) for scripts/check.sh.
+# the DOM for the values a user would look at (the open view, no login). Then
+# tests/browser/dashboard-test.mjs drives the page in real browsers
+# (puppeteer-core, installed by scripts/deps.sh): login, control, the lease,
+# the refusals, fuzz, the phone layout, with what reaches LCM read by
+# advee-stack-listen. Keeps the screenshots and the DOM under build/web/. One
+# TSV row per check in build/results/web.tsv (name, passed, failed, skipped,
+# status, note) for scripts/check.sh; the measured figures in
+# build/web/figures.txt.
 # Needs a route for multicast (the default route, or 224.0.0.0/4 dev lo).
 set -uo pipefail
 TOP=$(cd "$(dirname "$0")/../../.." && pwd)
@@ -38,9 +43,11 @@ trap cleanup EXIT
 
 WEB=$UL/web/advee-web
 PUB=$UL/web/advee-web-test-publisher
+LISTEN=$UL/demo/advee-stack-listen
+NODE_TESTS=$TOP/userland/web/tests/browser
 CHROMIUM=$(command -v chromium || command -v chromium-browser || true)
-if [ ! -x "$WEB" ] || [ ! -x "$PUB" ]; then
-	row "build: advee-web and advee-web-test-publisher" fail "not built in $UL"
+if [ ! -x "$WEB" ] || [ ! -x "$PUB" ] || [ ! -x "$LISTEN" ]; then
+	row "build: advee-web, advee-web-test-publisher, advee-stack-listen" fail "not built in $UL"
 	exit 1
 fi
 if [ -z "$CHROMIUM" ]; then
@@ -48,10 +55,23 @@ if [ -z "$CHROMIUM" ]; then
 	exit 1
 fi
 
+# Two operators with random passwords, for this run only.
+OPS=$OUT/operators
+rm -f "$OPS"
+: >"$OUT/advee-web.log"
+OP1=alice OP2=bob
+PW1=$("$WEB" --operators "$OPS" passwd "$OP1" --random 2>>"$OUT/advee-web.log")
+PW2=$("$WEB" --operators "$OPS" passwd "$OP2" --random 2>>"$OUT/advee-web.log")
+if [ "$(stat -c %a "$OPS" 2>/dev/null)" = 640 ] && [ ${#PW1} = 16 ] && ! grep -q "$PW1" "$OPS"; then
+	row "advee-web passwd: a 0640 file of hashes, no password in it" ok
+else
+	row "advee-web passwd: a 0640 file of hashes, no password in it" fail "$(stat -c %a "$OPS" 2>&1)"
+fi
+
 # A free TCP port: advee-web reports the one it got when given port 0.
-"$WEB" --listen 127.0.0.1:0 --root "$TOP/userland/web/static" \
+"$WEB" --listen 127.0.0.1:0 --root "$TOP/userland/web/static" --operators "$OPS" \
 	--robot "$TOP/userland/robotsim/conf/robot.yaml" --map "$TOP/userland/robotsim/conf/room.yaml" \
-	2>"$OUT/advee-web.log" &
+	2>>"$OUT/advee-web.log" &
 WEB_PID=$!
 PIDS="$PIDS $WEB_PID"
 port=
@@ -129,6 +149,33 @@ if [ -s "$OUT/dashboard.png" ] && [ "$(head -c 8 "$OUT/dashboard.png" | od -An -
 	row "screenshot build/web/dashboard.png ($(stat -c %s "$OUT/dashboard.png") bytes)" ok
 else
 	row "screenshot build/web/dashboard.png" fail "missing or too small: see build/web/chromium.log"
+fi
+
+# The real-browser tests (dashboard-test.mjs), while the publisher still runs.
+if [ ! -d "$NODE_TESTS/node_modules/puppeteer-core" ]; then
+	row "real-browser tests: puppeteer-core installed" fail "run scripts/deps.sh (npm ci in userland/web/tests/browser)"
+else
+	start=$(date +%s.%N)
+	WEB_URL=$URL WEB_PID=$WEB_PID LISTEN=$LISTEN CHROMIUM=$CHROMIUM OUT=$OUT OP1=$OP1 PW1=$PW1 OP2=$OP2 PW2=$PW2 \
+		timeout 180 node "$NODE_TESTS/dashboard-test.mjs" >"$OUT/browser-test.out" 2>"$OUT/browser-test.err"
+	rc=$?
+	: >"$OUT/figures.txt"
+	while IFS=$'\t' read -r kind a b c; do
+		case $kind in
+		ROW) row "$b" "$a" "$c" ;;
+		FIGURE) printf '%s: %s\n' "$a" "$b" | tee -a "$OUT/figures.txt" ;;
+		esac
+	done <"$OUT/browser-test.out"
+	printf 'real-browser tests: %.1f s\n' "$(echo "$(date +%s.%N) - $start" | bc)" | tee -a "$OUT/figures.txt"
+	if [ "$rc" != 0 ] && ! grep -q '^ROW	fail' "$OUT/browser-test.out"; then
+		row "real-browser tests ran" fail "exit $rc: $(tail -3 "$OUT/browser-test.err" | tr '\n' ' ')"
+	fi
+fi
+# Nothing secret in the log.
+if grep -qF -e "$PW1" -e "$PW2" "$OUT/advee-web.log"; then
+	row "no password in advee-web's log" fail "build/web/advee-web.log"
+else
+	row "no password in advee-web's log" ok
 fi
 
 # SIGTERM ends the bridge cleanly (exit 0) with its drop count.

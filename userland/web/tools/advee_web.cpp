@@ -13,9 +13,13 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <termios.h>
+#include <unistd.h>
 
 #include "advee/cli.hpp"
 #include "advee/web/bridge_server.hpp"
+#include "advee/web/control_publisher.hpp"
+#include "advee/web/password_file.hpp"
 #include "advee/web/lcm_source.hpp"
 #include "advee/web/history.hpp"
 #include "advee/web/message_json.hpp"
@@ -24,6 +28,9 @@
 
 #ifndef ADVEE_WEB_DATADIR
 #define ADVEE_WEB_DATADIR "/usr/share/advee/web"
+#endif
+#ifndef ADVEE_WEB_OPERATORS
+#define ADVEE_WEB_OPERATORS "/etc/advee/web-operators"
 #endif
 #ifndef ADVEE_ROBOTSIM_SYSCONFDIR
 #define ADVEE_ROBOTSIM_SYSCONFDIR "/etc/advee/robotsim"
@@ -50,6 +57,62 @@ bool split_listen(const std::string& s, std::string& host, std::uint16_t& port) 
   return !host.empty();
 }
 
+// One line from stdin; without echo when it is a terminal.
+std::string read_secret(const char* prompt) {
+  termios old{};
+  const bool tty = ::isatty(0) && ::tcgetattr(0, &old) == 0;
+  if (tty) {
+    std::cerr << prompt << std::flush;
+    termios quiet = old;
+    quiet.c_lflag &= ~static_cast<tcflag_t>(ECHO);
+    ::tcsetattr(0, TCSANOW, &quiet);
+  }
+  std::string line;
+  std::getline(std::cin, line);
+  if (tty) {
+    ::tcsetattr(0, TCSANOW, &old);
+    std::cerr << "\n";
+  }
+  return line;
+}
+
+// advee-web passwd: sets (or with --delete removes) one operator's password.
+int passwd(const std::string& file, const std::string& name, bool remove, bool random) {
+  try {
+    advee::web::init_crypto();
+    auto f = advee::web::PasswordFile::load(file);
+    if (remove) {
+      if (!f.remove(name)) {
+        std::cerr << "advee-web passwd: no operator " << name << " in " << file << "\n";
+        return advee::cli::kExitFailure;
+      }
+    } else {
+      std::string pw;
+      if (random) {
+        pw = advee::web::random_password();
+        std::cout << pw << std::endl;
+      } else {
+        pw = read_secret("password: ");
+        if (::isatty(0) && read_secret("again: ") != pw) {
+          std::cerr << "advee-web passwd: the two differ; nothing changed\n";
+          return advee::cli::kExitFailure;
+        }
+      }
+      if (pw.size() < 8) {
+        std::cerr << "advee-web passwd: at least 8 characters\n";
+        return advee::cli::kExitFailure;
+      }
+      f.set(name, pw);
+    }
+    f.save(file);
+  } catch (const std::exception& e) {
+    std::cerr << "advee-web passwd: " << e.what() << "\n";
+    return advee::cli::kExitFailure;
+  }
+  std::cerr << "advee-web passwd: " << file << ": " << name << (remove ? " removed" : " set") << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -68,6 +131,9 @@ int main(int argc, char** argv) {
       "A slow client never makes the bridge grow: while its socket holds more than\n"
       "--max-buffered bytes unsent, only the newest message per channel (and module)\n"
       "waits for it; replaced ones are counted as dropped and shown on the page.\n\n"
+      "Control (driving, module states, power, homing) needs an operator logged in\n"
+      "with a password from --operators (set one with `advee-web passwd NAME`) and\n"
+      "the control lease; docs/web-dashboard.md describes the security model.\n\n"
       "Signals: SIGINT, SIGTERM close every connection and exit 0.\n"
       "Exit codes: 0 stopped by a signal, 1 LCM or the listening socket could not be set\n"
       "up or LCM failed while running, 2 bad command line.",
@@ -78,6 +144,35 @@ int main(int argc, char** argv) {
   std::string robot_file = std::string(ADVEE_ROBOTSIM_SYSCONFDIR) + "/robot.yaml";
   std::string map_file = std::string(ADVEE_ROBOTSIM_SYSCONFDIR) + "/room.yaml";
   std::size_t max_buffered = 256 * 1024;
+  std::string operators = ADVEE_WEB_OPERATORS;
+  std::string view = "open";
+  std::vector<std::string> allow_origins;
+  double max_speed = 0.5, max_steering_deg = 30;
+  bool secure_cookie = false;
+  app.add_flag("--secure-cookie", secure_cookie, "the page is reached over https (a TLS proxy in front): "
+                                                 "the session cookie gets Secure");
+  app.add_option("--operators", operators, "the operators' password file (NAME:crypto_pwhash "
+                                           "hash, mode 0640 root:advee; advee-web passwd sets it)")
+      ->capture_default_str();
+  app.add_option("--view", view, "open: anyone reaching the port sees the live data; login: only "
+                                 "logged-in operators")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"open", "login"}));
+  app.add_option("--allow-origin", allow_origins, "a further Origin the page may be served from "
+                                                   "(e.g. https://robot.example behind a proxy)");
+  app.add_option("--max-speed", max_speed, "the fastest the page may drive, m/s")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 1.5));
+  app.add_option("--max-steering-deg", max_steering_deg, "the largest steering angle the page may ask, degrees")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 30.0));
+  auto* pw_cmd = app.add_subcommand("passwd", "set an operator's password in --operators (read "
+                                              "from the terminal twice, or one line of stdin) and exit");
+  std::string pw_name;
+  bool pw_delete = false, pw_random = false;
+  pw_cmd->add_option("name", pw_name, "operator name: 1-32 of A-Z a-z 0-9 _ . -")->required();
+  pw_cmd->add_flag("--delete", pw_delete, "remove the operator instead");
+  pw_cmd->add_flag("--random", pw_random, "generate a random password and print it on stdout");
   app.add_option("--listen", listen, "HOST:PORT for HTTP and WebSocket; 0.0.0.0:PORT for every "
                                      "interface (a VM's port forwarding needs that); PORT 0 picks a free "
                                      "port and prints it")
@@ -96,6 +191,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{1024}, std::size_t{64} << 20));
   ADVEE_CLI_PARSE(app, argc, argv);
+  if (*pw_cmd) return passwd(operators, pw_name, pw_delete, pw_random);
 
   advee::web::BridgeOptions opt;
   if (!split_listen(listen, opt.address, opt.port))
@@ -107,6 +203,11 @@ int main(int argc, char** argv) {
     return advee::cli::kExitFailure;
   }
   opt.max_buffered_bytes = max_buffered;
+  opt.password_file = operators;
+  opt.view_requires_login = view == "login";
+  opt.allowed_origins = allow_origins;
+  opt.secure_cookie = secure_cookie;
+  opt.drive_limits = {max_speed, max_steering_deg * 3.14159265358979323846 / 180};
   const auto scene = advee::web::load_scene(robot_file, map_file);
   if (scene.contains("errors"))
     for (const auto& e : scene["errors"]) log_line("scene: " + e.get<std::string>());
@@ -119,10 +220,15 @@ int main(int argc, char** argv) {
   }
 
   asio::io_context io;
+  std::optional<advee::web::ControlPublisher> publisher;  // outlives the server, which may stop the robot
   std::optional<advee::web::BridgeServer> server;
   std::optional<advee::web::LcmSource> source;
   try {
-    server.emplace(io, opt, log_line);
+    publisher.emplace(lcm_url, log_line);
+    server.emplace(io, opt, log_line,
+                   [&publisher](const advee::web::ControlRequest& r, const advee::web::Operator& who, bool audit) {
+                     (*publisher)(r, who, audit);
+                   });
     // Messages are decoded on the LCM thread and sent on the io thread.
     auto forward = [&io, &server](const nlohmann::json& m) {
       const std::string channel = m.value("channel", "");

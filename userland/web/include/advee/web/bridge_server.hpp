@@ -15,6 +15,9 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include "advee/web/control_request.hpp"
 
 namespace advee::web {
 
@@ -31,19 +34,48 @@ struct BridgeOptions {
   // History replayed to a new client (messages broadcast with keep).
   double history_s = 120;
   std::size_t history_max = 6000;
+
+  // Control (docs/web-dashboard.md "Security model"). Operators and their
+  // password hashes; empty path or no operators: nobody can log in.
+  std::filesystem::path password_file;
+  // false: anyone who reaches the port sees the live data (the robot's own
+  // network); true: the WebSocket needs a logged-in session as well.
+  bool view_requires_login = false;
+  // Origins accepted besides the page's own (http(s)://Host).
+  std::vector<std::string> allowed_origins;
+  // The session cookie gets Secure (set when the page is served over TLS).
+  bool secure_cookie = false;
+  DriveLimits drive_limits;
+  // The lease holder's drive commands stopping for this long while it drives
+  // (a page that hangs without closing) makes the bridge send the stop.
+  std::uint32_t drive_timeout_ms = 500;
+  std::size_t max_message_bytes = 64 * 1024;  // larger frames close the connection
+};
+
+// Who asked for a control action: the operator's name and address.
+struct Operator {
+  std::string name, address;
 };
 
 struct BridgeStats {
   std::size_t clients = 0;
   std::uint64_t messages = 0;  // broadcast() calls
   std::uint64_t dropped = 0;   // over every client, closed ones included
+  std::uint64_t refused = 0;   // control messages refused (malformed, no login, no lease)
 };
 
 class BridgeServer {
  public:
   using Log = std::function<void(const std::string&)>;
+  // Carries out an accepted control request (drive, stop, state, power,
+  // homing: an LCM message) and, with `audit`, records it (log and
+  // CM_DATA_ERROR notice); take and release come with audit only. Runs on
+  // the io_context's thread. The bridge sends a stop by itself when the lease
+  // holder goes (disconnect, logout, take-over) or its drive commands stop.
+  using Control = std::function<void(const ControlRequest&, const Operator&, bool audit)>;
   // Listens at once; throws std::runtime_error (address in use, bad address).
-  BridgeServer(asio::io_context& io, BridgeOptions options, Log log);
+  // Reads options.password_file (throws std::runtime_error naming a bad line).
+  BridgeServer(asio::io_context& io, BridgeOptions options, Log log, Control control = nullptr);
   ~BridgeServer();
   BridgeServer(const BridgeServer&) = delete;
   BridgeServer& operator=(const BridgeServer&) = delete;

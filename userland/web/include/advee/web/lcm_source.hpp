@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
 // Receives the bridged LCM channels on its own thread and hands each decoded
-// message (message_to_json()) to a callback on that thread. Stopping = destroying:
+// message (message_to_json(), plus "line": msgs::describe()'s one line) to a
+// callback on that thread. Stopping = destroying:
 // the thread is joined within one LCM wait (100 ms).
 #pragma once
 
