@@ -153,7 +153,8 @@ host_checks() {
 	local a
 	stage "unit tests (ASan/UBSan)" nice -n 10 "$TOP/scripts/unit.sh"
 	# The web dashboard end to end on the host: advee-web, LCM over loopback
-	# multicast, headless Chromium; one row per check in results/web.tsv.
+	# multicast, headless Chromium, then real browsers driven by puppeteer-core
+	# (login, control, refusals, fuzz, phone); one row per check in results/web.tsv.
 	stage "web dashboard (headless Chromium)" "$TOP/userland/web/tests/browser-check.sh"
 	[ -s "$RESULTS/web.tsv" ] ||
 		printf 'web: browser check did not run\t0\t1\t0\tfail\tsee output above\n' >>"$RESULTS/stages.tsv"

@@ -454,5 +454,23 @@ TEST_F(BridgeDriveTimeout, DriveCommandsThatStopComingStopTheRobot) {
   std::printf("stop after the last drive command: %.0f ms (timeout 200 ms, flush every 20 ms)\n", ms);
 }
 
+
+class BridgeViewLogin : public Bridge {
+  void configure(BridgeOptions& o) override { o.view_requires_login = true; }
+};
+
+TEST_F(BridgeViewLogin, TheLiveViewNeedsALoginToo) {
+  auto anon = connect();
+  EXPECT_EQ(upgrade(anon, "Origin: http://x\r\n").rfind("HTTP/1.1 401", 0), 0u);
+  auto forged = connect();
+  EXPECT_EQ(upgrade(forged, "Origin: http://x\r\nCookie: advee_session=" + std::string(64, 'b') + "\r\n")
+                .rfind("HTTP/1.1 401", 0), 0u);
+  EXPECT_EQ(http_get("/").rfind("HTTP/1.1 200", 0), 0u);  // the page itself holds no data
+  auto op = websocket(login("alice", "alice-password"));
+  broadcast("LL_DATA_ODO", R"({"channel":"LL_DATA_ODO","n":1})");
+  EXPECT_EQ(read_until_prefix(op, R"({"channel":"LL_DATA_ODO")"), R"({"channel":"LL_DATA_ODO","n":1})");
+  EXPECT_EQ(stats().clients, 1u);
+}
+
 }  // namespace
 }  // namespace advee::web
