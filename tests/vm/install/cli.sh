@@ -12,11 +12,6 @@ mapfile -t programs < <(cli_programs)
 tap_plan $((1 + 3 * ${#programs[@]}))
 tap_here "staging install of the userland" stage_install --modules none
 for p in "${programs[@]}"; do
-	case ${p##*/} in
-	# issue 23 rewrites canopenctl on CLI11 (userland/canopen): its main
-	# is theirs; its points are known defects until it calls advee::cli.
-	canopenctl) cli_check "$DEST" "$p" "issue 23: canopenctl's main is being rewritten" ;;
-	*) cli_check "$DEST" "$p" ;;
-	esac
+	cli_check "$DEST" "$p"
 done
 tap_finish

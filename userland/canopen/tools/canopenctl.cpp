@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
 // canopenctl: command-line CANopen master tool on SocketCAN. NMT commands,
 // typed SDO read/write (block transfer too), a scan of the nodes that answer
-// with their identity, PDO mapping dump, CiA 402 status and power control,
-// live traffic and heartbeat monitors. Every argument is checked before the CAN socket is
-// opened. Exit status 0 on success, 1 on a CANopen or I/O error (message on
-// stderr), 2 on usage errors.
+// with their identity, PDO dump and remap, CiA 402 status and power control,
+// live traffic and heartbeat monitors. Every argument is checked before the
+// CAN socket is opened. Exit status (advee/cli.hpp) 0 on success and after --help and
+// --version, 1 on a CANopen or I/O error (message on stderr), 2 on usage
+// errors.
 #include <CLI/CLI.hpp>
 
 #include <csignal>
@@ -17,6 +18,7 @@
 #include "advee/canopen/axis402.hpp"
 #include "advee/canopen/pdo_config.hpp"
 #include "advee/canopen/runtime.hpp"
+#include "advee/cli.hpp"
 #include "canopenctl_text.hpp"
 
 using namespace advee::canopen;
@@ -189,19 +191,15 @@ int main(int argc, char** argv) {
                "canopenctl"};
   Args a;
   describe(app, a);
+  ADVEE_CLI_PARSE(app, argc, argv);
   Command command;
   try {
-    app.parse(argc, argv);
     const CLI::App* sub = app.get_subcommands().front();
     std::string name = sub->get_name();
     if (!sub->get_subcommands().empty()) name += " " + sub->get_subcommands().front()->get_name();
     command = check(name, a);
-  } catch (const CLI::ParseError& e) {
-    const int r = app.exit(e);
-    return r == 0 ? 0 : 2;
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "canopenctl: %s\nTry 'canopenctl --help'.\n", e.what());
-    return 2;
+    return advee::cli::usage_error(app, e.what());
   }
   const Command& c = command;
   const std::string& cmd = c.name;
@@ -339,7 +337,7 @@ int main(int argc, char** argv) {
     loop.run();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "canopenctl: %s\n", e.what());
-    return 1;
+    return advee::cli::kExitFailure;
   }
   return rc;
 }
