@@ -3,8 +3,9 @@
 #
 # browser-check.sh [USERLAND_BUILD_DIR]: the dashboard end to end on the host.
 # Starts advee-web on a private LCM group (UDP multicast over the host's
-# loopback, ttl=0: nothing leaves the machine; port 7679 so that other
-# engineers' LCM tests on 7667 cannot mix in), publishes the known scene of
+# loopback, ttl=0: nothing leaves the machine; a port of 7680-8679 of its own,
+# so that LCM tests on 7667 and another run of this check at the same time
+# cannot mix in: the real-browser test counts every command on LCM), publishes the known scene of
 # advee-web-test-publisher, renders the page with headless Chromium and checks
 # the DOM for the values a user would look at (the open view, no login). Then
 # tests/browser/dashboard-test.mjs drives the page in real browsers
@@ -24,7 +25,7 @@ RESULTS=$BUILD/results
 ROWS=$RESULTS/web.tsv
 mkdir -p "$OUT" "$RESULTS"
 : >"$ROWS"
-export LCM_DEFAULT_URL="udpm://239.255.76.67:7679?ttl=0"
+export LCM_DEFAULT_URL="udpm://239.255.76.67:$((7680 + $$ % 1000))?ttl=0"
 failed=0
 row() {	# row NAME ok|fail|skip [NOTE]
 	case $2 in
