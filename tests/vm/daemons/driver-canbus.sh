@@ -7,13 +7,14 @@
 # quick-stop controlword to node 1 on candump 1.0-1.5 s after the last
 # command, the homing gate and homing, LL_EVENT_STOP holds until released,
 # PAUSE/RUN, a killed IclA simulator reported and booted again when it comes
-# back, SIGTERM, and exit 0x22 when the drives do not answer.
+# back, SIGTERM, and exit 0x22 when the drives do not answer; the master's
+# own dictionary read over SDO (canopenctl).
 . "$(dirname "$0")/lib.sh"
 . "$VMTEST_REPO/tests/lib/candump.sh"
 
 canbus_up "$DRIVER_CANBUS" "$PROBE" "$LCMCTL"
 
-tap_plan 22
+tap_plan 23
 
 # drives FILE KEY: KEY of the last LL_DATA_DRIVES line in FILE.
 drives() { field "$(grep '^LL_DATA_DRIVES ' "$1" | tail -1)" "$2"; }
@@ -42,6 +43,8 @@ tap_is "both drives booted and enabled" "$(drives "$SCR/boot.out" node1) $(drive
 tap_rate "LL_DATA_DRIVES at 4 Hz" "$SCR/boot-enabled.out" LL_DATA_DRIVES 4
 tap_is "two boot notices (number 10)" "$(errors_numbered "$SCR/boot.out" 10)" 2
 [ "$n" -ge 1 ] || sed 's/^/# canbus.err: /' "$SCR/canbus.err" | tail -20
+tap_is "the master serves its dictionary as node 127: 0x1017 is its 100 ms heartbeat" \
+	"$("$CANBIN/canopenctl" -i "$IF" read 127 1017 u16 2>&1)" "100 (0x64)"
 
 # 1. Motion at 10 Hz for 3.5 s, steering not homed yet; the listener runs
 # on past the last command to see the timeout.
