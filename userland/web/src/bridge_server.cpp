@@ -32,7 +32,8 @@ using Hdl = websocketpp::connection_hdl;
 constexpr std::size_t kMaxSnapshotKeys = 1024;
 constexpr int kStatusEveryFlushes = 10;
 constexpr std::size_t kMaxHttpBody = 4096;
-// Password checks run off the io thread (each takes ~0.1 s and 64 MiB);
+// Password checks run off the io thread, one at a time (each takes 19 MiB
+// and tens of ms, more on ARM);
 // beyond this many at once a login is answered 503.
 constexpr int kMaxLoginsInFlight = 2;
 
