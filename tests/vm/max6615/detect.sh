@@ -12,9 +12,10 @@ tap_header
 # kmsg_lines: kernel log lines so far (to see what a step printed)
 kmsg_lines() { dmesg | wc -l; }
 # new_kmsg_since N: what the driver or the stub's bus logged after line N
-# (other kernel chatter under a loaded host is not the driver's)
+# (other kernel chatter under a loaded host is not the driver's): the driver
+# by name, the stub's bus, any client on it ("0-0019")
 new_kmsg_since() {
-	dmesg | tail -n +"$(($1 + 1))" | grep -E "max661[56]|i2c-$STUB_BUS|$(client_name)"
+	dmesg | tail -n +"$(($1 + 1))" | grep -E "max661[56]|i2c-$STUB_BUS|$STUB_BUS-00[0-9a-f]{2}"
 }
 
 # Detection needs the three ID registers only; the probe reads the rest as 0.
@@ -23,30 +24,39 @@ ID_IMAGE="
 0xfe 0x68
 0xff 0x4d
 "
-for addr in 0x18 0x19 0x1a 0x29 0x2a 0x2b 0x4c 0x4d 0x4e; do
-	stub_load "$addr" || { tap_diag "cannot load i2c-stub at $addr"; exit 1; }
-	image_load "$ID_IMAGE" || { tap_diag "cannot preload the IDs at $addr"; exit 1; }
-	modprobe max6615 || { tap_diag "cannot load max6615"; exit 1; }
-	tap_ok "detected and bound at $addr" driver_bound
-	cleanup_modules
+# All nine addresses, and one outside them, on one stub (i2c-stub takes up to
+# ten chips): one load of the driver probes them all, as it does on a bus
+# with several fan controllers.
+ADDRS="0x18 0x19 0x1a 0x29 0x2a 0x2b 0x4c 0x4d 0x4e"
+stub_load "$(echo $ADDRS 0x2c | tr ' ' ,)" || { tap_diag "cannot load i2c-stub"; exit 1; }
+for addr in $ADDRS 0x2c; do
+	CHIP_ADDR=$addr image_load "$ID_IMAGE" || { tap_diag "cannot preload the IDs at $addr"; exit 1; }
 done
-
+modprobe max6615 || { tap_diag "cannot load max6615"; exit 1; }
+for CHIP_ADDR in $ADDRS; do
+	tap_ok "detected and bound at $CHIP_ADDR" driver_bound
+done
 # An address outside the nine is never probed.
-stub_load 0x2c && image_load "$ID_IMAGE"
-modprobe max6615
+CHIP_ADDR=0x2c
 tap_ok "not instantiated at 0x2c (not a MAX6615 address)" test ! -e "$(client_dir)"
 cleanup_modules
 
-# Each ID register wrong on its own: no device, no message.
-for bad in "0xfd 0x02" "0xfe 0x69" "0xff 0x4e" "0xfe 0x00"; do
-	set -- $bad
-	stub_load 0x18 && image_load "$ID_IMAGE" && reg_set "$1" "$2"
-	before=$(kmsg_lines)
-	modprobe max6615
-	tap_ok "no device when register $1 reads $2" test ! -e "$(client_dir)"
-	tap_is "detection with register $1 = $2 is silent" "$(new_kmsg_since "$before")" ""
-	cleanup_modules
+# Each ID register wrong on its own, one chip each: no device, no message.
+BAD_IDS="0x18:0xfd:0x02 0x19:0xfe:0x69 0x1a:0xff:0x4e 0x29:0xfe:0x00"
+stub_load 0x18,0x19,0x1a,0x29 || { tap_diag "cannot load i2c-stub"; exit 1; }
+for bad in $BAD_IDS; do
+	IFS=: read -r CHIP_ADDR reg val <<<"$bad"
+	image_load "$ID_IMAGE" && reg_set "$reg" "$val"
 done
+before=$(kmsg_lines)
+modprobe max6615
+for bad in $BAD_IDS; do
+	IFS=: read -r CHIP_ADDR reg val <<<"$bad"
+	tap_ok "no device when register $reg reads $val (at $CHIP_ADDR)" test ! -e "$(client_dir)"
+done
+CHIP_ADDR=0x18
+tap_is "detection of the four chips with a wrong ID is silent" "$(new_kmsg_since "$before")" ""
+cleanup_modules
 
 # Binding reads the IDs first and writes nothing, even to a chip that a
 # user left in standby (CONFIG bit 7): the driver keeps the chip's settings.

@@ -54,10 +54,13 @@ CHIP_ADDR=0x18
 # i2c-dev gives i2cset/i2cget their /dev/i2c-N; unloaded again if we loaded it.
 I2C_DEV_LOADED_BY_US=0
 
-# stub_load ADDR: load i2c-stub with one chip at ADDR and find its bus number.
+# stub_load ADDR[,ADDR...]: load i2c-stub with a chip at each ADDR (up to
+# ten, one module load for all of them) and find its bus number; CHIP_ADDR,
+# the chip the helpers below talk to, is the first.
 stub_load() {
-	CHIP_ADDR=$1
-	modprobe i2c-stub chip_addr="$CHIP_ADDR" || return 1
+	CHIP_ADDR=${1%%,*}
+	LAST_DUMP=
+	modprobe i2c-stub chip_addr="$1" || return 1
 	STUB_BUS=
 	for a in /sys/bus/i2c/devices/i2c-*; do
 		if grep -q '^SMBus stub driver' "$a/name" 2>/dev/null; then
@@ -79,6 +82,7 @@ stub_load() {
 
 # image_load [IMAGE]: write a register image ("reg value" lines) into the stub.
 image_load() {
+	LAST_DUMP=
 	echo "${1:-$BRFAN1_IMAGE}" | while read -r reg val; do
 		[ -n "$reg" ] || continue
 		i2cset -y -f "$STUB_BUS" "$CHIP_ADDR" "$reg" "$val" || return 1
@@ -89,7 +93,7 @@ image_load() {
 reg_get() { i2cget -y -f "$STUB_BUS" "$CHIP_ADDR" "$1"; }
 # reg_set REG VALUE: change the chip behind the driver (volatile registers only,
 # the driver caches the others).
-reg_set() { i2cset -y -f "$STUB_BUS" "$CHIP_ADDR" "$1" "$2"; }
+reg_set() { LAST_DUMP=; i2cset -y -f "$STUB_BUS" "$CHIP_ADDR" "$1" "$2"; }
 
 client_name() { printf '%s-%04x' "$STUB_BUS" "$CHIP_ADDR"; }
 client_dir() { echo "/sys/bus/i2c/devices/$(client_name)"; }
@@ -129,12 +133,21 @@ dump_with() {
 		'{ $(r + 1) = v; for (i = 1; i <= NF; i++) printf "%s ", $i }'
 }
 
+# LAST_DUMP: the registers as the previous expect_write/expect_reject left
+# them, the "before" of the next one (two dumps per check cost half of this
+# suite's time on the debug kernel). Whatever changes the chip on purpose
+# (reg_set, image_load, stub_load, a test's own writes: clear it there)
+# empties it. A change nobody asked for in between (say, a driver write on
+# an attribute read) then shows as a failure of the next check.
+LAST_DUMP=
+
 # expect_write ATTR VALUE REG NEWVAL: the write succeeds and changes exactly
 # register REG to NEWVAL, nothing else (H = the hwmon directory).
 expect_write() {
-	_before=$(dump_regs)
+	_before=${LAST_DUMP:-$(dump_regs)}
 	_res=$(attr_write_errno "$H/$1" "$2")
 	_after=$(dump_regs)
+	LAST_DUMP=$_after
 	tap_is "$1 <- $2 sets reg $3 to $4 and nothing else" "$_res $_after" \
 		"ok $(dump_with "$3" "$4" "$_before")"
 }
@@ -142,9 +155,10 @@ expect_write() {
 # expect_reject ATTR VALUE ERRTEXT: the write fails with ERRTEXT and no
 # register changes.
 expect_reject() {
-	_before=$(dump_regs)
+	_before=${LAST_DUMP:-$(dump_regs)}
 	_res=$(attr_write_errno "$H/$1" "$2")
 	_after=$(dump_regs)
+	LAST_DUMP=$_after
 	tap_is "$1 <- $2 is rejected ($3), registers unchanged" "$_res $_after" \
 		"$3 $_before"
 }
