@@ -16,6 +16,12 @@
 # Full debug information (-g) costs a fifth of the compile time of every
 # file and five times the size of the binaries the VM tests package; nothing
 # here reads it.
+# Unity builds (CMake merges up to 8 sources of a target into one file):
+# the standard, GoogleTest, CLI11, yaml-cpp and LCM headers are parsed once
+# per batch instead of once per source, which is most of the compile time
+# of these files; every variant is a whole build in make check. The price:
+# names at file scope must be unique within a target (an anonymous
+# namespace does not separate the files of one batch).
 # The cross builds link Debian's armhf/armel libraries from the sysroot of
 # scripts/fetch-arm-sysroot.sh (.cache/arm/ARCH/sysroot) and end with an ABI
 # check of every ELF file they produced.
@@ -24,7 +30,8 @@ set -euo pipefail
 
 variant=${1:?variant (native|asan|armhf|armel)}
 # Installed (scripts/install.sh) as a Debian package would be: /usr, /etc.
-args=(-G Ninja -S "$TOP/userland" -DCMAKE_INSTALL_PREFIX=/usr -DCMAKE_INSTALL_SYSCONFDIR=/etc)
+args=(-G Ninja -S "$TOP/userland" -DCMAKE_INSTALL_PREFIX=/usr -DCMAKE_INSTALL_SYSCONFDIR=/etc
+	-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8)
 shipped=(-DCMAKE_BUILD_TYPE=Release "-DCMAKE_C_FLAGS_RELEASE=-O2 -DNDEBUG" "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG")
 case $variant in
 native)

@@ -8,10 +8,11 @@
 #include <cerrno>
 #include <system_error>
 
+#include "advee/throw_errno.hpp"
+
 namespace advee::canopen {
 
 namespace {
-[[noreturn]] void throw_errno(const char* what) { throw std::system_error(errno, std::generic_category(), what); }
 
 timespec to_timespec(TimePoint t) {
   const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();

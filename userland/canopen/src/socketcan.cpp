@@ -11,6 +11,8 @@
 #include <cstring>
 #include <system_error>
 
+#include "advee/throw_errno.hpp"
+
 namespace advee::canopen {
 
 std::string_view to_string(CanControllerState s) {
@@ -51,10 +53,6 @@ CanErrorInfo decode_error_frame(const ::can_frame& f) {
   }
   return e;
 }
-
-namespace {
-[[noreturn]] void throw_errno(const char* what) { throw std::system_error(errno, std::generic_category(), what); }
-}  // namespace
 
 CanSocket CanSocket::open(const std::string& ifname) {
   UniqueFd fd(::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW));

@@ -44,12 +44,6 @@ struct Recorder final : CommandSink {
   }
 };
 
-template <typename Msg>
-void feed(Model& m, const char* ch, const Msg& msg, double now) {
-  const auto b = test::encode(msg);
-  m.handle(ch, b.data(), b.size(), now);
-}
-
 const Key kUp{Key::Up}, kDown{Key::Down}, kLeft{Key::Left}, kRight{Key::Right}, kEnter{Key::Enter};
 
 }  // namespace
@@ -158,7 +152,7 @@ TEST(Controller, HomingAndOdometryReset) {
   lowlevel::data_odo_t o{};
   o.speed_mps = 1;
   o.interval_s = 0.25;
-  feed(m, "LL_DATA_ODO", o, 0.1);
+  test::feed(m, "LL_DATA_ODO", o, 0.1);
   EXPECT_NEAR(m.odometry().pose().x_m, 0.25, 1e-12);
   c.on_key(Key::ch('o'), 0.2);
   EXPECT_EQ(m.odometry().pose().x_m, 0);
@@ -176,7 +170,7 @@ TEST(Controller, ModuleViewSendsManualStateCommandsToTheSelectedModule) {
     s.module = name;
     s.state = static_cast<std::int8_t>(State::Run);
     s.pid = 1;
-    feed(m, "CM_DATA_STATE", s, 0);
+    test::feed(m, "CM_DATA_STATE", s, 0);
   }
   c.on_key(Key::fn(3), 0);
   EXPECT_EQ(c.selected_module(), "driver_aux");
@@ -209,7 +203,7 @@ TEST(Controller, TerminateNeedsASecondTOnTheSameModuleInTime) {
     common::data_state_t s{};
     s.module = name;
     s.state = static_cast<std::int8_t>(State::Run);
-    feed(m, "CM_DATA_STATE", s, 0);
+    test::feed(m, "CM_DATA_STATE", s, 0);
   }
   c.on_key(Key::ch('3'), 0);
   c.on_key(Key::ch('t'), 0);
@@ -243,7 +237,7 @@ TEST(Controller, PowerViewTogglesTheSelectedOutput) {
   p.num_outputs = 4;
   p.on = {true, true, false, false};
   p.current_a = {0.5f, 0.2f, -1.0f, -1.0f};
-  feed(m, "LL_DATA_POWER", p, 0);
+  test::feed(m, "LL_DATA_POWER", p, 0);
   c.on_key(Key::fn(4), 0);
   EXPECT_EQ(c.view(), View::Power);
   c.on_key(kDown, 0);
@@ -268,7 +262,7 @@ TEST(Controller, ErrorViewScrollsAndClears) {
   for (int i = 0; i < 3; ++i) {
     common::error_t e{};
     e.text = "e" + std::to_string(i);
-    feed(m, "CM_DATA_ERROR", e, i);
+    test::feed(m, "CM_DATA_ERROR", e, i);
   }
   c.on_key(Key::ch('2'), 0);
   for (int i = 0; i < 5; ++i) c.on_key(kUp, 0);

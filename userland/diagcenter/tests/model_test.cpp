@@ -18,12 +18,6 @@ using advee::module::State;
 
 namespace {
 
-template <typename Msg>
-bool feed(Model& m, const char* ch, const Msg& msg, double now) {
-  const auto b = encode(msg);
-  return m.handle(ch, b.data(), b.size(), now);
-}
-
 common::data_state_t announce(const std::string& name, State s, int pid) {
   common::data_state_t d{};
   d.module = name;
@@ -58,8 +52,8 @@ lowlevel::data_odo_t odo(double v, double w, double dt) {
 
 TEST(Model, ModulesMergeAnnouncementsAndSupervisor) {
   Model m;
-  EXPECT_TRUE(feed(m, "CM_DATA_STATE", announce("driver_aux", State::Run, 100), 1.0));
-  EXPECT_TRUE(feed(m, "CM_DATA_STATE", announce("driver_power", State::Pause, 200), 1.1));
+  EXPECT_TRUE(test::feed(m, "CM_DATA_STATE", announce("driver_aux", State::Run, 100), 1.0));
+  EXPECT_TRUE(test::feed(m, "CM_DATA_STATE", announce("driver_power", State::Pause, 200), 1.1));
   ASSERT_EQ(m.modules().size(), 2u);
   const auto& aux = m.modules().at("driver_aux");
   EXPECT_EQ(aux.state, State::Run);
@@ -68,12 +62,12 @@ TEST(Model, ModulesMergeAnnouncementsAndSupervisor) {
   EXPECT_EQ(m.modules().at("driver_power").state, State::Pause);
 
   // SIGSTOP of driver_aux: the supervisor ends it and starts a new one.
-  feed(m, "CM_DATA_MODULES", phase("driver_aux", 3, 100, 0, -1), 4.0);
+  test::feed(m, "CM_DATA_MODULES", phase("driver_aux", 3, 100, 0, -1), 4.0);
   EXPECT_EQ(m.modules().at("driver_aux").phase, 3);
-  feed(m, "CM_DATA_MODULES", phase("driver_aux", 4, 0, 0, 143), 4.1);
-  feed(m, "CM_DATA_MODULES", phase("driver_aux", 1, 101, 1, 143), 4.2);
-  feed(m, "CM_DATA_STATE", announce("driver_aux", State::Run, 101), 4.5);
-  feed(m, "CM_DATA_MODULES", phase("driver_aux", 2, 101, 1, 143), 4.5);
+  test::feed(m, "CM_DATA_MODULES", phase("driver_aux", 4, 0, 0, 143), 4.1);
+  test::feed(m, "CM_DATA_MODULES", phase("driver_aux", 1, 101, 1, 143), 4.2);
+  test::feed(m, "CM_DATA_STATE", announce("driver_aux", State::Run, 101), 4.5);
+  test::feed(m, "CM_DATA_MODULES", phase("driver_aux", 2, 101, 1, 143), 4.5);
   const auto& a2 = m.modules().at("driver_aux");
   EXPECT_EQ(a2.pid, 101);
   EXPECT_EQ(a2.restarts, 1);
@@ -83,7 +77,7 @@ TEST(Model, ModulesMergeAnnouncementsAndSupervisor) {
   EXPECT_EQ(a2.pids_seen, 2);
   EXPECT_EQ(a2.state_at, 4.5);
   // A module known only through the supervisor (never announced) is listed.
-  feed(m, "CM_DATA_MODULES", phase("driver_canbus", 0, 0, 3, 33), 5.0);
+  test::feed(m, "CM_DATA_MODULES", phase("driver_canbus", 0, 0, 3, 33), 5.0);
   ASSERT_EQ(m.modules().count("driver_canbus"), 1u);
   EXPECT_FALSE(m.modules().at("driver_canbus").state.has_value());
 }
@@ -94,10 +88,10 @@ TEST(Model, ModulesMergeAnnouncementsAndSupervisor) {
 TEST(Model, OdometryIntegratesSpeedAndYawRate) {
   Model m;
   double t = 0;
-  for (int i = 0; i < 16; ++i) feed(m, "LL_DATA_ODO", odo(0.5, 0, 0.25), t += 0.25);
+  for (int i = 0; i < 16; ++i) test::feed(m, "LL_DATA_ODO", odo(0.5, 0, 0.25), t += 0.25);
   const double quarter_s = (std::numbers::pi / 2) / 0.4;
-  for (int i = 0; i < 10; ++i) feed(m, "LL_DATA_ODO", odo(0.4, 0.4, quarter_s / 10), t += 0.4);
-  for (int i = 0; i < 8; ++i) feed(m, "LL_DATA_ODO", odo(0.5, 0, 0.25), t += 0.25);
+  for (int i = 0; i < 10; ++i) test::feed(m, "LL_DATA_ODO", odo(0.4, 0.4, quarter_s / 10), t += 0.4);
+  for (int i = 0; i < 8; ++i) test::feed(m, "LL_DATA_ODO", odo(0.5, 0, 0.25), t += 0.25);
   const auto& p = m.odometry().pose();
   EXPECT_NEAR(p.x_m, 3.0, 1e-6);
   EXPECT_NEAR(p.y_m, 2.0, 1e-6);
@@ -115,7 +109,7 @@ TEST(Model, ErrorsAreKeptNewestLastAndBounded) {
     e.module = "driver_rs485a";
     e.number = i;
     e.text = "error " + std::to_string(i);
-    feed(m, "CM_DATA_ERROR", e, i);
+    test::feed(m, "CM_DATA_ERROR", e, i);
   }
   EXPECT_EQ(m.errors_total(), 250u);
   ASSERT_EQ(m.errors().size(), Model::kMaxErrors);
@@ -136,12 +130,12 @@ TEST(Model, LatestSensorDataAndGarbage) {
   s.num_irs = 1;
   s.ir_id = {3};
   s.ir_range_m = {0.12f};
-  EXPECT_TRUE(feed(m, "LL_DATA_SRFS", s, 2.0));
+  EXPECT_TRUE(test::feed(m, "LL_DATA_SRFS", s, 2.0));
   lowlevel::data_temperature_t tt{};
   tt.count = 1;
   tt.label = {"temp1"};
   tt.celsius = {31.5f};
-  EXPECT_TRUE(feed(m, "LL_DATA_TEMPERATURE", tt, 2.5));
+  EXPECT_TRUE(test::feed(m, "LL_DATA_TEMPERATURE", tt, 2.5));
   lowlevel::data_drives_t d{};
   d.num_drives = 1;
   d.axis = {lowlevel::data_drives_t::AXIS_PROPULSION};
@@ -151,7 +145,7 @@ TEST(Model, LatestSensorDataAndGarbage) {
   d.error_code = {0};
   d.homed = {false};
   d.speed_mps = 0.29;
-  EXPECT_TRUE(feed(m, "LL_DATA_DRIVES", d, 3.0));
+  EXPECT_TRUE(test::feed(m, "LL_DATA_DRIVES", d, 3.0));
 
   // Bytes that are not the channel's type: counted, the previous data stays.
   const std::uint8_t junk[] = {1, 2, 3, 4, 5, 6, 7, 8, 9};
@@ -177,17 +171,17 @@ TEST(Model, PauseIsTheNewestOfEventAndPowerStatus) {
   lowlevel::data_power_t p{};
   p.num_outputs = 0;
   p.paused = false;
-  feed(m, "LL_DATA_POWER", p, 1.0);
+  test::feed(m, "LL_DATA_POWER", p, 1.0);
   EXPECT_EQ(m.pause_engaged(), false);
   lowlevel::event_stop_t e{};
   e.stop = true;
-  feed(m, "LL_EVENT_STOP", e, 1.5);  // between two 1 Hz status messages
+  test::feed(m, "LL_EVENT_STOP", e, 1.5);  // between two 1 Hz status messages
   EXPECT_EQ(m.pause_engaged(), true);
   p.paused = true;
-  feed(m, "LL_DATA_POWER", p, 2.0);
+  test::feed(m, "LL_DATA_POWER", p, 2.0);
   EXPECT_EQ(m.pause_engaged(), true);
   e.stop = false;
-  feed(m, "LL_EVENT_STOP", e, 2.2);
+  test::feed(m, "LL_EVENT_STOP", e, 2.2);
   EXPECT_EQ(m.pause_engaged(), false);
 }
 
@@ -239,14 +233,14 @@ TEST(Model, OdometryStartsAtTheFirstTruePose) {
   p.x_m = 2.0;
   p.y_m = 1.0;
   p.heading_rad = std::numbers::pi;  // facing -x
-  EXPECT_TRUE(feed(m, "SIM_DATA_POSE", p, 1.0));
+  EXPECT_TRUE(test::feed(m, "SIM_DATA_POSE", p, 1.0));
   EXPECT_TRUE(m.odometry_from_true_pose());
   EXPECT_TRUE(m.true_pose().has());
-  feed(m, "LL_DATA_ODO", odo(1.0, 0, 0.5), 1.5);
+  test::feed(m, "LL_DATA_ODO", odo(1.0, 0, 0.5), 1.5);
   EXPECT_NEAR(m.odometry().pose().x_m, 1.5, 1e-12);
   EXPECT_NEAR(m.odometry().pose().y_m, 1.0, 1e-12);
   p.x_m = 1.45;  // the truth differs a little (wheel slip)
-  feed(m, "SIM_DATA_POSE", p, 1.6);
+  test::feed(m, "SIM_DATA_POSE", p, 1.6);
   EXPECT_NEAR(m.odometry().pose().x_m, 1.5, 1e-12);
   EXPECT_EQ(m.true_pose().x_m, 1.45);
   m.reset_odometry();

@@ -16,12 +16,6 @@ using advee::module::State;
 
 namespace {
 
-template <typename Msg>
-void feed(Model& m, const char* ch, const Msg& msg, double now) {
-  const auto b = test::encode(msg);
-  ASSERT_TRUE(m.handle(ch, b.data(), b.size(), now)) << ch;
-}
-
 // The line of the block that starts with "topic ".
 std::string line(const std::string& block, const std::string& topic) {
   std::istringstream in(block);
@@ -52,28 +46,28 @@ TEST(TextSummary, EveryTopicWithValuesAndAges) {
   s.module = "driver_aux";
   s.state = static_cast<std::int8_t>(State::Run);
   s.pid = 321;
-  feed(m, "CM_DATA_STATE", s, 9.5);
+  ASSERT_TRUE(test::feed(m, "CM_DATA_STATE", s, 9.5)) << "CM_DATA_STATE";
   s.module = "driver_power";
   s.state = static_cast<std::int8_t>(State::Pause);
   s.pid = 322;
-  feed(m, "CM_DATA_STATE", s, 6.0);  // 4 s ago: stale
+  ASSERT_TRUE(test::feed(m, "CM_DATA_STATE", s, 6.0)) << "CM_DATA_STATE";  // 4 s ago: stale
   common::data_module_phase_t ph{};
   ph.target = "driver_aux";
   ph.phase = 2;
   ph.pid = 321;
   ph.restarts = 2;
-  feed(m, "CM_DATA_MODULES", ph, 9.0);
+  ASSERT_TRUE(test::feed(m, "CM_DATA_MODULES", ph, 9.0)) << "CM_DATA_MODULES";
 
   lowlevel::data_odo_t o{};
   o.speed_mps = 0.5;
   o.yaw_rate_radps = 0;
   o.interval_s = 2.0;
-  feed(m, "LL_DATA_ODO", o, 9.8);
+  ASSERT_TRUE(test::feed(m, "LL_DATA_ODO", o, 9.8)) << "LL_DATA_ODO";
   lowlevel::cmd_motion_t c{};
   c.module = "diagnostic_center";
   c.speed_mps = 0.3;
   c.steering_rad = 0.0873;
-  feed(m, "LL_CMD_MOTION", c, 9.9);
+  ASSERT_TRUE(test::feed(m, "LL_CMD_MOTION", c, 9.9)) << "LL_CMD_MOTION";
   lowlevel::data_drives_t d{};
   d.num_drives = 2;
   d.axis = {0, 1};
@@ -88,7 +82,7 @@ TEST(TextSummary, EveryTopicWithValuesAndAges) {
   d.cmd_steering_rad = 0.0873;
   d.stopped = true;
   d.stop_reason = "LL_EVENT_STOP";
-  feed(m, "LL_DATA_DRIVES", d, 9.75);
+  ASSERT_TRUE(test::feed(m, "LL_DATA_DRIVES", d, 9.75)) << "LL_DATA_DRIVES";
   lowlevel::data_srfs_t sr{};
   sr.num_srfs = 2;
   sr.srf_id = {0, 1};
@@ -96,17 +90,17 @@ TEST(TextSummary, EveryTopicWithValuesAndAges) {
   sr.num_irs = 1;
   sr.ir_id = {2};
   sr.ir_range_m = {0.125f};
-  feed(m, "LL_DATA_SRFS", sr, 9.9);
+  ASSERT_TRUE(test::feed(m, "LL_DATA_SRFS", sr, 9.9)) << "LL_DATA_SRFS";
   lowlevel::data_beacons_t be{};
   be.count = 1;
   be.id = {3};
   be.bearing_rad = {1.5708f};
-  feed(m, "LL_DATA_BEACONS", be, 9.0);
+  ASSERT_TRUE(test::feed(m, "LL_DATA_BEACONS", be, 9.0)) << "LL_DATA_BEACONS";
   lowlevel::data_temperature_t te{};
   te.count = 2;
   te.label = {"temp1", "temp2"};
   te.celsius = {31.5f, 44.125f};
-  feed(m, "LL_DATA_TEMPERATURE", te, 5.0);  // 5 s ago at 1 Hz: stale
+  ASSERT_TRUE(test::feed(m, "LL_DATA_TEMPERATURE", te, 5.0)) << "LL_DATA_TEMPERATURE";  // 5 s ago at 1 Hz: stale
   lowlevel::data_fans_t fa{};
   fa.count = 1;
   fa.label = {"fan1"};
@@ -114,24 +108,24 @@ TEST(TextSummary, EveryTopicWithValuesAndAges) {
   fa.fault = {true};
   fa.pwm = {255};
   fa.fan_fail = true;
-  feed(m, "LL_DATA_FANS", fa, 9.5);
+  ASSERT_TRUE(test::feed(m, "LL_DATA_FANS", fa, 9.5)) << "LL_DATA_FANS";
   lowlevel::data_power_t pw{};
   pw.battery_v = -1;
   pw.num_outputs = 2;
   pw.on = {true, false};
   pw.current_a = {0.5f, -1.0f};
   pw.paused = false;
-  feed(m, "LL_DATA_POWER", pw, 9.0);
+  ASSERT_TRUE(test::feed(m, "LL_DATA_POWER", pw, 9.0)) << "LL_DATA_POWER";
   lowlevel::event_stop_t st{};
   st.stop = true;
   st.source = lowlevel::event_stop_t::SOURCE_PSC1;
-  feed(m, "LL_EVENT_STOP", st, 9.6);
+  ASSERT_TRUE(test::feed(m, "LL_EVENT_STOP", st, 9.6)) << "LL_EVENT_STOP";
   common::error_t e{};
   e.module = "driver_rs485a";
   e.number = 1;
   e.severity = common::error_t::SEVERITY_WARNING;
   e.text = "rear (0x11): GET_BOTH failed: timeout";
-  feed(m, "CM_DATA_ERROR", e, 8.0);
+  ASSERT_TRUE(test::feed(m, "CM_DATA_ERROR", e, 8.0)) << "CM_DATA_ERROR";
 
   const auto b = text_summary(m, 10.0, 3.0);
   EXPECT_EQ(line(b, "summary"), "summary t=3.0 messages=13");
@@ -177,11 +171,11 @@ TEST(TextSummary, TruePoseAndOdometryInTheWorldFrame) {
   p.heading_rad = 1.5707963267948966;  // facing +y
   p.speed_mps = 0.5;
   p.steering_rad = 0.1;
-  feed(m, "SIM_DATA_POSE", p, 9.9);
+  ASSERT_TRUE(test::feed(m, "SIM_DATA_POSE", p, 9.9)) << "SIM_DATA_POSE";
   lowlevel::data_odo_t o{};
   o.speed_mps = 0.5;
   o.interval_s = 1.0;
-  feed(m, "LL_DATA_ODO", o, 10.0);
+  ASSERT_TRUE(test::feed(m, "LL_DATA_ODO", o, 10.0)) << "LL_DATA_ODO";
   const auto b = text_summary(m, 10.0, 1.0);
   EXPECT_EQ(line(b, "pose_true"),
             "pose_true x=1.500 y=2.000 heading=1.571 speed=0.500 steering=0.100 age=0.1");

@@ -9,14 +9,9 @@
 #include <cerrno>
 #include <system_error>
 
+#include "advee/throw_errno.hpp"
+
 namespace advee::module {
-namespace {
-
-[[noreturn]] void throw_errno(const char* what) {
-  throw std::system_error(errno, std::generic_category(), what);
-}
-
-}  // namespace
 
 PeriodicTimer::PeriodicTimer(std::chrono::nanoseconds period)
     : fd_(::timerfd_create(CLOCK_MONOTONIC, TFD_NONBLOCK | TFD_CLOEXEC)), period_(period) {

@@ -12,14 +12,9 @@
 #include <utility>
 #include <vector>
 
+#include "advee/throw_errno.hpp"
+
 namespace advee::module {
-namespace {
-
-[[noreturn]] void throw_errno(const char* what) {
-  throw std::system_error(errno, std::generic_category(), what);
-}
-
-}  // namespace
 
 Timer& Timer::operator=(Timer&& o) noexcept {
   if (this != &o) {

@@ -15,7 +15,7 @@ namespace advee::driver_canbus {
 
 using module::ExitKind;
 using module::ModuleExit;
-using module::State;
+using ModuleState = module::State;  // State alone is the drives' (controller.cpp)
 
 CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), cfg_(cfg), bus_state_(cfg_.interface) {
   canopen::MasterConfig mc;
@@ -38,7 +38,7 @@ CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), 
       });
 
   motion_sub_.emplace(m_.lcm(), std::string(msgs::kCmdMotion.name), [this](const lowlevel::cmd_motion_t& c) {
-    if (m_.state() != State::Run) return;  // PAUSE: no targets are sent
+    if (m_.state() != ModuleState::Run) return;  // PAUSE: no targets are sent
     const double v = c.speed_mps, s = c.steering_rad;
     loop_.post([this, v, s] { controller_->motion(v, s); });
   });
@@ -48,7 +48,7 @@ CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), 
                          "LL_CMD_HOMING from " + c.module + ": unknown axis " + std::to_string(c.axis));
       return;
     }
-    if (m_.state() != State::Run) {
+    if (m_.state() != ModuleState::Run) {
       m_.errors().report(module::Severity::Warning, module::ErrorType::Unknown, kErrRefused,
                          "LL_CMD_HOMING from " + c.module + " ignored: module is in " +
                              std::string(module::to_string(m_.state())));
@@ -61,8 +61,8 @@ CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), 
     const bool stop = e.stop;
     loop_.post([this, stop] { controller_->stop_event(stop); });
   });
-  m_.on_state_change([this](State, State to) {
-    if (to == State::Run)
+  m_.on_state_change([this](ModuleState, ModuleState to) {
+    if (to == ModuleState::Run)
       loop_.post([this] { controller_->resume(); });
     else
       loop_.post([this] { controller_->pause(); });
