@@ -120,13 +120,11 @@ x86_lane() {	# x86_lane LANE [--test SUITE]...: one x86_64 guest
 	[ -s "$BUILD/kmod/x86_64/modules.list" ] || "$TOP/scripts/build-kmod.sh" x86_64
 	stage "$lane VM lane" "$TOP/tests/harness/vm-x86.sh" --lane "$lane" "$@"
 }
-newer_kernels() {	# the kernel suites dealt over 6.12 and 6.12-rt (lib-host.sh: newer_kernel_suites)
-	local k sel
-	for k in 6.12 6.12-rt; do
-		mapfile -t sel < <(newer_kernel_suites "$k" | awk '{ print "--test"; print }')
-		[ -s "$BUILD/kmod/x86_64-$k/modules.list" ] || "$TOP/scripts/build-kmod.sh" "x86_64-$k"
-		stage "x86_64-$k VM lane" "$TOP/tests/harness/vm-x86.sh" --kernel-flavour "$k" "${sel[@]}"
-	done
+newer_kernel() {	# newer_kernel 6.12|6.12-rt: its share of the kernel suites (lib-host.sh: newer_kernel_suites)
+	local k=$1 sel
+	mapfile -t sel < <(newer_kernel_suites "$k" | awk '{ print "--test"; print }')
+	[ -s "$BUILD/kmod/x86_64-$k/modules.list" ] || "$TOP/scripts/build-kmod.sh" "x86_64-$k"
+	stage "x86_64-$k VM lane" "$TOP/tests/harness/vm-x86.sh" --kernel-flavour "$k" "${sel[@]}"
 }
 armhf_lane() {
 	[ -s "$BUILD/kmod/armhf/modules.list" ] || "$TOP/scripts/build-kmod.sh" armhf
@@ -217,22 +215,22 @@ full)
 	# Four tracks side by side. A TCG guest waits on timers most of the
 	# time (an x86_64 guest kept 0.6 of a core busy over its 30 minutes), so
 	# up to three guests (each with 2 vCPUs) run next to the host's builds
-	# (CPU-bound, at a lower priority):
-	#   vm      the x86_64 guest of the kernel suites (and of the suites
-	#           without x86_lane=user), then the armhf lane, then the armel
-	#           cross build (this track ends first otherwise);
-	#   vmuser  the x86_64 guest of the user-space suites (x86_lane=user in
-	#           their settings), then DKMS (a guest per amd64 kernel), then
-	#           the kernel suites dealt over 6.12 and 6.12-rt (a guest each,
-	#           about 14 min together), then the two-computer test (two
-	#           guests at once, about 5 min);
+	# (CPU-bound, at a lower priority). Each kernel suite runs on 6.1 (the
+	# debug lane; the armhf lane if portable) and on one 6.12 kernel, stock
+	# or PREEMPT_RT (docs/kernels.md); the other suites on Debian's 6.1:
+	#   vm      the kernel suites on stock 6.12, then the armhf lane, then
+	#           the two-computer test (two guests at once, about 3 min),
+	#           then the armel cross build (this track ends first otherwise);
+	#   vmuser  the x86_64 guest (6.1) of the suites that are not kernel
+	#           suites (user-space stack, install), then DKMS (a guest per
+	#           amd64 kernel), then the kernel suites with rt_lane=1 on
+	#           6.12 PREEMPT_RT;
 	#   debug   the debug lane, as soon as its kernel is there (a cold build
 	#           runs in the background from the start; vm-debug.sh waits);
 	#   host    the unit tests, the browser check, the armhf cross build.
-	mapfile -t kernel_sel < <(x86_suites other | awk '{ print "--test"; print }')
-	mapfile -t user_sel < <(x86_suites user | awk '{ print "--test"; print }')
-	vm_track() { x86_lane x86_64 "${kernel_sel[@]}"; armhf_lane; cross_check armel; }
-	vmuser_track() { x86_lane x86_64-user "${user_sel[@]}"; dkms_check; newer_kernels; pair_check; }
+	mapfile -t system_sel < <(system_suites | awk '{ print "--test"; print }')
+	vm_track() { newer_kernel 6.12; armhf_lane; pair_check; cross_check armel; }
+	vmuser_track() { x86_lane x86_64 "${system_sel[@]}"; dkms_check; newer_kernel 6.12-rt; }
 	track vm vm_track
 	track vmuser vmuser_track
 	track debug debug_lane
@@ -248,7 +246,7 @@ done >"$RESULTS/all.tsv"
 "$TOP/scripts/skip-policy.sh" "$RESULTS/all.tsv" >"$RESULTS/skip-policy.tsv"
 cat "$RESULTS/skip-policy.tsv" >>"$RESULTS/all.tsv"
 # VM time per suite and lane (the 7th column of the lanes' rows).
-for lane in x86_64 x86_64-2 x86_64-user x86_64-6.12 x86_64-6.12-rt armhf debug twocomp-a twocomp-b; do
+for lane in x86_64 x86_64-2 x86_64-6.12 x86_64-6.12-rt armhf debug twocomp-a twocomp-b; do
 	[ -s "$RESULTS/$lane.tsv" ] || continue
 	awk -F'\t' -v lane="$lane" '$7 != "" {
 			s = $1; sub(/^[^:]*: /, "", s); sub(/\/.*/, "", s); t[s] += $7
