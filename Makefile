@@ -19,6 +19,7 @@
 #   make install         install the built stack (DESTDIR= stages it; ARCH=arm
 #                        TARGET=armel|armhf the ARM build; MODULES=dkms|none)
 #   make dkms-source     the module sources into $(DESTDIR)/usr/src/advee-VERSION
+#   make debs            the Debian packages into build/debs/, lintian-checked
 #   make clean
 #
 # KDIR=... builds the modules against another kernel tree (default: Debian's
@@ -38,7 +39,7 @@ KSRC_DIRS := kernel tsuart-fix rs485proto i2c-max6615 tests/kmod tests/sim ts780
 TEST ?=
 export KVER KDIR TOP BUILD
 
-.PHONY: all default modules userland testprogs arm arm-modules arm-userland arm-testprogs \
+.PHONY: debs all default modules userland testprogs arm arm-modules arm-userland arm-testprogs \
 	check check-fast unit gates vm-x86 vm-arm vm-debug bench demo deps clean help \
 	install dkms-source
 
@@ -117,6 +118,9 @@ install:
 
 dkms-source:
 	@$(TOP)/scripts/install.sh --dkms-source-only $(if $(DESTDIR),--destdir "$(DESTDIR)")
+
+debs:
+	@$(TOP)/scripts/build-debs.sh --lintian
 
 demo:
 	@$(TOP)/scripts/demo.sh $(if $(FOR),--for "$(FOR)")

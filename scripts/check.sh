@@ -157,6 +157,13 @@ host_checks() {
 	[ -s "$RESULTS/web.tsv" ] ||
 		printf 'web: browser check did not run\t0\t1\t0\tfail\tsee output above\n' >>"$RESULTS/stages.tsv"
 	cross_check armhf
+	debs_check
+}
+debs_check() {	# the packages of the stage "Debian packages": lintian, programs
+	stage "Debian packages: lintian" lintian --fail-on error,warning "$BUILD"/debs/advee_*.changes
+	stage_row "Debian packages: lintian, no error and no warning" $?
+	stage "Debian packages: man page and --version" "$TOP/scripts/debs-programs.sh"
+	stage_row "Debian packages: every program has a man page and --version" $?
 }
 cross_check() {	# cross_check TARGET: every program of the install manifest exists for it
 	stage "userland cross build + install manifest ($1)" nice -n 10 "$TOP/scripts/cross-check.sh" "$1"
@@ -186,6 +193,13 @@ ADVEE_UNIT_TESTS=0 stage "userland (native)" "$TOP/scripts/build-userland.sh" na
 stage_row "userland (native)" $?
 stage "test programs (x86_64)" "$TOP/scripts/build-testprogs.sh" x86_64
 stage_row "test programs (x86_64)" $?
+# The Debian packages of that build (debian/rules reuses it: 21-36 s on a
+# loaded 2-core machine), before the tracks: the install suite installs them
+# (make check TEST=install[/debs] builds them too, other selections do not).
+if [ "$mode" = full ] || printf '%s\n' "${tests[@]}" | grep -qx 'install\(/debs\)\{0,1\}'; then
+	ADVEE_UNIT_TESTS=0 stage "Debian packages (dpkg-buildpackage)" "$TOP/scripts/build-debs.sh"
+	stage_row "Debian packages (dpkg-buildpackage)" $?
+fi
 
 case $mode in
 fast)

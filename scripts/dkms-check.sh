@@ -33,7 +33,7 @@ dkms_check_kernel() {	# NAME: one of AMD64_KERNELS
 
 	"$TOP/scripts/install.sh" --dkms-source-only --destdir "$work/stage"
 	src=$work/stage/usr/src
-	ver=$(sed -n 's/^PACKAGE_VERSION="\(.*\)"$/\1/p' "$TOP/dkms/dkms.conf")
+	ver=$(advee_version)
 	opts=(-m advee -v "$ver" --sourcetree "$src" --dkmstree "$work/tree" --installtree "$work/install")
 
 	say "dkms add / build / install advee/$ver for $kver (private trees in $work)"

@@ -55,7 +55,6 @@ production_modules() {
 	done
 }
 
-dkms_version() { sed -n 's/^PACKAGE_VERSION="\(.*\)"$/\1/p' "$TOP/dkms/dkms.conf"; }
 
 # check_dkms_conf: dkms.conf builds exactly the production modules.
 check_dkms_conf() {
@@ -74,8 +73,8 @@ check_dkms_conf() {
 install_dkms_source() {
 	local ver src d
 	check_dkms_conf
-	ver=$(dkms_version)
-	[ -n "$ver" ] || die "no PACKAGE_VERSION in dkms/dkms.conf"
+	ver=$(advee_version)
+	[ -n "$ver" ] || die "no version in debian/changelog"
 	src=$D/usr/src/advee-$ver
 	say "DKMS source tree $src"
 	rm -rf "$src"
@@ -88,7 +87,7 @@ install_dkms_source() {
 	# The project headers (kernel/include) come with the kernel dir; the
 	# test dirs are dropped from the top Kbuild.
 	grep -v '^obj-y[[:space:]]*+=[[:space:]]*tests/' "$TOP/Kbuild" >"$src/Kbuild"
-	install -m 0644 "$TOP/dkms/dkms.conf" "$src/dkms.conf"
+	sed "s/#MODULE_VERSION#/$ver/g" "$TOP/dkms/dkms.conf" >"$src/dkms.conf"
 	find "$src" -type d -exec chmod 0755 {} + && find "$src" -type f -exec chmod 0644 {} +
 	echo "$ver"
 }
@@ -112,8 +111,7 @@ fi
 
 # --- system integration ----------------------------------------------------------
 say "udev rules, systemd units, configuration, docs"
-inst 0644 "$TOP/udev/60-advee-rs485-buses.rules" /etc/udev/rules.d/60-advee-rs485-buses.rules
-for f in 61-advee-rs485.rules 61-advee-gpio.rules 62-advee-max6615.rules; do
+for f in 60-advee-rs485-buses.rules 61-advee-rs485.rules 61-advee-gpio.rules 62-advee-max6615.rules; do
 	inst 0644 "$TOP/udev/$f" "/usr/lib/udev/rules.d/$f"
 done
 for f in "$TOP"/systemd/*.service; do

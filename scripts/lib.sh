@@ -6,6 +6,9 @@ KSRC_DIRS="kernel tsuart-fix rs485proto i2c-max6615 tests/kmod tests/sim ts7800-
 
 say()  { printf '==> %s\n' "$*" >&2; }
 die()  { printf 'error: %s\n' "$*" >&2; exit 1; }
+# advee_version: the version of the build and of every package, from its one
+# source, the newest entry of debian/changelog (docs/command-line.md).
+advee_version() { dpkg-parsechangelog -l "$TOP/debian/changelog" -S Version; }
 
 # arm_tree DEBARCH FLAVOUR: root of the extracted Debian ARM kernel packages.
 arm_tree() { "$TOP/scripts/fetch-arm-kernel.sh" "$1" "$2"; }

@@ -62,13 +62,11 @@ stage_system() {
 
 # make_live: the group of the installed sysusers.d file (on the /etc overlay)
 # and the installed udev rules, in force for udevadm: all in /run/udev/rules.d
-# (udev orders rules by file name across its directories, so the mapping file
-# from /etc/udev/rules.d acts there as it does in /etc).
+# (udev orders rules by file name across its directories).
 make_live() {
 	overlay_rw /etc || return 1
 	systemd-sysusers "$DEST/usr/lib/sysusers.d/advee.conf" || return 1
 	mkdir -p /run/udev/rules.d
-	cp "$DEST"/etc/udev/rules.d/*.rules /run/udev/rules.d/ || return 1
 	cp "$DEST"/usr/lib/udev/rules.d/*.rules /run/udev/rules.d/ || return 1
 }
 

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# debs-programs.sh [DIR]: over the file lists of the packages in DIR
+# (build/debs, scripts/build-debs.sh): the programs they ship (/usr/bin,
+# /usr/sbin, /usr/libexec/advee) are exactly those of the install manifest
+# (docs/install.md), each has its man page (section 1 for /usr/bin, 8 for
+# the daemons and the supervisor) and answers --version with "NAME VERSION",
+# VERSION the package's. Prints each problem; exits 1 on any.
+set -euo pipefail
+. "$(dirname "$0")/lib.sh"
+. "$TOP/tests/lib/cli.sh"
+
+dir=${1:-$BUILD/debs}
+debs=("$dir"/*.deb)
+[ -f "${debs[0]}" ] || die "no package in $dir (run scripts/build-debs.sh)"
+root=$(mktemp -d)
+trap 'rm -rf "$root"' EXIT
+bad=0
+problem() { echo "  $*"; bad=1; }
+declare -A version
+for deb in "${debs[@]}"; do
+	dpkg-deb -x "$deb" "$root"
+	while read -r f; do version[$f]=$(dpkg-deb -f "$deb" Version); done < <(
+		dpkg-deb -c "$deb" | awk '{ print substr($6, 2) }' |
+			grep -E '^/usr/(bin|sbin)/[^/]+$|^/usr/libexec/advee/[^/]+$' || true)
+done
+shipped=$(printf '%s\n' "${!version[@]}" | sort)
+manifest=$(cli_programs | sort)
+[ "$shipped" = "$manifest" ] ||
+	problem "the packages' programs differ from docs/install.md's (<: packages, >: manifest):" \
+		"$(diff <(echo "$shipped") <(echo "$manifest") | grep '^[<>]' | tr '\n' ' ')"
+n=0
+for p in $shipped; do
+	name=${p##*/}
+	case $p in /usr/bin/*) sec=1 ;; *) sec=8 ;; esac
+	[ -f "$root/usr/share/man/man$sec/$name.$sec.gz" ] || problem "$p: no man page usr/share/man/man$sec/$name.$sec.gz"
+	got=$(timeout 10 "$root$p" --version 2>&1) || true
+	if [ "$got" != "$name ${version[$p]}" ]; then
+		case $name in
+		# issue 23 rewrites canopenctl's main (userland/canopen): a known
+		# defect until it calls advee::cli (tests/vm/install/cli.sh: TODO).
+		canopenctl) echo "  TODO (issue 23) $p --version: '$(tr '\n' ' ' <<<"$got")'" ;;
+		*) problem "$p --version: '$got', want '$name ${version[$p]}'" ;;
+		esac
+	fi
+	n=$((n + 1))
+done
+say "$n programs in ${#debs[@]} packages: man page and --version checked"
+exit $bad
