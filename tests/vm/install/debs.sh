@@ -13,9 +13,10 @@
 # the unit enabled (the symlink), started on installation, restarted on
 # upgrade, stopped on removal, and the symlinks gone on purge.
 # The upgrade is to the same packages with a higher version (repacked with
-# dpkg-deb: a rebuild would take the lane minutes); an edited conffile must
-# survive it. advee-dkms is not installed here (its postinst would build the
-# modules for every kernel with headers; scripts/dkms-check.sh covers dkms).
+# dpkg-deb, uncompressed: the cheapest to write under TCG; a rebuild would
+# take the lane minutes); an edited conffile must survive it. advee-dkms is
+# not installed here (its postinst would build the modules for every kernel
+# with headers; scripts/dkms-check.sh covers dkms).
 . "$(dirname "$0")/lib.sh"
 C=/tmp/debs-chroot.$$
 DEBS=$VMTEST_BUILD/debs
@@ -57,7 +58,7 @@ chroot_setup() {
 		rm -rf "$C/tmp/repack" && dpkg-deb -R "$d" "$C/tmp/repack" || return 1
 		sed -i "s/^Version: .*/Version: $ver+upgrade1/; s/(= $ver)/(= $ver+upgrade1)/" "$C/tmp/repack/DEBIAN/control"
 		mkdir -p "$C/tmp/debs-new"
-		dpkg-deb --root-owner-group -b "$C/tmp/repack" "$C/tmp/debs-new/" >/dev/null || return 1
+		dpkg-deb --root-owner-group -Znone -b "$C/tmp/repack" "$C/tmp/debs-new/" >/dev/null || return 1
 	done
 }
 in_chroot() { chroot "$C" "$@"; }
