@@ -36,14 +36,7 @@ for p in $shipped; do
 	case $p in /usr/bin/*) sec=1 ;; *) sec=8 ;; esac
 	[ -f "$root/usr/share/man/man$sec/$name.$sec.gz" ] || problem "$p: no man page usr/share/man/man$sec/$name.$sec.gz"
 	got=$(timeout 10 "$root$p" --version 2>&1) || true
-	if [ "$got" != "$name ${version[$p]}" ]; then
-		case $name in
-		# issue 23 rewrites canopenctl's main (userland/canopen): a known
-		# defect until it calls advee::cli (tests/vm/install/cli.sh: TODO).
-		canopenctl) echo "  TODO (issue 23) $p --version: '$(tr '\n' ' ' <<<"$got")'" ;;
-		*) problem "$p --version: '$got', want '$name ${version[$p]}'" ;;
-		esac
-	fi
+	[ "$got" = "$name ${version[$p]}" ] || problem "$p --version: '$got', want '$name ${version[$p]}'"
 	n=$((n + 1))
 done
 say "$n programs in ${#debs[@]} packages: man page and --version checked"
