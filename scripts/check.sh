@@ -156,7 +156,6 @@ host_checks() {
 	stage "web dashboard (headless Chromium)" "$TOP/userland/web/tests/browser-check.sh"
 	[ -s "$RESULTS/web.tsv" ] ||
 		printf 'web: browser check did not run\t0\t1\t0\tfail\tsee output above\n' >>"$RESULTS/stages.tsv"
-	cross_check armhf
 	debs_check
 }
 debs_check() {	# the packages of the stage "Debian packages": lintian, programs
@@ -238,13 +237,15 @@ full)
 	#   vmuser  the x86_64 guest (6.1) of the suites that are not kernel
 	#           suites (user-space stack, install), then DKMS (a guest per
 	#           amd64 kernel), then the kernel suites with rt_lane=1 on
-	#           6.12 PREEMPT_RT;
+	#           6.12 PREEMPT_RT, then the armhf cross build;
 	#   debug   the debug lane, as soon as its kernel is there (a cold build
 	#           runs in the background from the start; vm-debug.sh waits);
-	#   host    the unit tests, the browser check, the armhf cross build.
+	#   host    the unit tests (the longest stage: a build at a lower
+	#           priority next to three guests), the browser check, lintian
+	#           and the packages' programs.
 	mapfile -t system_sel < <(system_suites | awk '{ print "--test"; print }')
 	vm_track() { newer_kernel 6.12; armhf_lane; pair_check; cross_check armel; }
-	vmuser_track() { x86_lane x86_64 "${system_sel[@]}"; dkms_check; newer_kernel 6.12-rt; }
+	vmuser_track() { x86_lane x86_64 "${system_sel[@]}"; dkms_check; newer_kernel 6.12-rt; cross_check armhf; }
 	track vm vm_track
 	track vmuser vmuser_track
 	track debug debug_lane
