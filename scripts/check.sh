@@ -148,7 +148,6 @@ debug_lane() {
 # The host-side checks that need no VM of their own, at a low priority next
 # to the VM lanes: CPU-bound builds fill the time the guests spend waiting.
 host_checks() {
-	local a
 	stage "unit tests (ASan/UBSan)" nice -n 10 "$TOP/scripts/unit.sh"
 	# The web dashboard end to end on the host: advee-web, LCM over loopback
 	# multicast, headless Chromium, then real browsers driven by puppeteer-core
