@@ -109,6 +109,8 @@ if [ "$mode" = tui ]; then
 	clear 2>/dev/null
 	echo "demo: diagnostic_center exited ($rc); stopping the stack and powering off"
 	stack_down
+	# The harness counts a program that printed no TAP point as a failure.
+	tap_result 0 "demo: the operator ended the interactive session (diagnostic_center exit status $rc)"
 	exit 0
 fi
 
@@ -135,4 +137,6 @@ else
 fi
 echo "demo: ran $(($(date +%s) - t0)) s; diagnostic_center exit status $rc"
 stack_down
+# The harness counts a program that printed no TAP point as a failure.
+tap_result "$rc" "demo: the stack ran $for_ on the simulated robot and diagnostic_center summarised it"
 exit $rc
