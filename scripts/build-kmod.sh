@@ -4,10 +4,11 @@
 # build-kmod.sh TARGET [KDIR]: build every module of the project's Kbuild tree
 # with W=1 for one target kernel. TARGET is x86_64 (KDIR defaults to Debian's
 # 6.1 amd64 headers), x86_64-6.12 or x86_64-6.12-rt (bookworm-backports'
-# headers; lib.sh: amd64_kernel), armhf (armmp), armel (marvell) or any name
-# with an explicit KDIR. The sources are mirrored into build/kmod/TARGET so
-# that targets never share objects; a compiler warning fails the build (W=1
-# must be clean).
+# headers; lib.sh: amd64_kernel), armhf (armmp), armel (marvell), debug-6.12-rt
+# or debug-6.1 (the debug lane's kernel: scripts/debug-kernel.sh builds or
+# finds it) or any name with an explicit KDIR. The sources are mirrored into
+# build/kmod/TARGET so that targets never share objects; a compiler warning
+# fails the build (W=1 must be clean).
 # Output: build/kmod/TARGET/modules.list, one .ko path per line.
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
@@ -19,6 +20,9 @@ case $target in
 x86_64|x86_64-*)
 	# amd64_kernel sets kdir (and kver, vmlinuz, modbase).
 	[ -n "$kdir" ] || amd64_kernel "$(amd64_kernel_of "$target")"
+	;;
+debug-6.12-rt|debug-6.1)
+	[ -n "$kdir" ] || kdir=$("$TOP/scripts/debug-kernel.sh" "${target#debug-}")/build
 	;;
 armhf|armel)
 	root=$(arm_tree "$target" "$(arm_flavour "$target")")

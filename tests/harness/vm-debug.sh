@@ -2,14 +2,16 @@
 # SPDX-License-Identifier: GPL-2.0
 #
 # vm-debug.sh - the debug-kernel VM lane: every VM test under KASAN, lockdep,
-# kmemleak, UBSAN, KFENCE, DEBUG_OBJECTS and PREEMPT, with gpio-sim available.
+# kmemleak, UBSAN, KFENCE and DEBUG_OBJECTS, with gpio-sim available, on 6.12
+# PREEMPT_RT (or 6.1 with PREEMPT: ADVEE_DEBUG_KERNEL=6.1).
 #
 # Builds (or reuses from its cache) the debug kernel (scripts/debug-kernel.sh),
-# builds the project's modules against its tree (build/kmod/debug/) and the VM
-# test programs, then runs tests/harness/vm-x86.sh on it as lane "debug"
+# builds the project's modules against its tree (build/kmod/debug-SERIES/) and
+# the VM test programs, then runs tests/harness/vm-x86.sh on it as lane "debug"
 # (results in build/vm/debug/, rows in build/results/debug.tsv).
 #
-# usage: vm-debug.sh [vm-x86.sh options: --test SUITE[/PROGRAM], --shell, --run PROG]
+# usage: [ADVEE_DEBUG_KERNEL=6.12-rt|6.1] vm-debug.sh [vm-x86.sh options:
+#        --test SUITE[/PROGRAM], --shell, --run PROG, --lane NAME]
 # Exit status: 0 when every test passed, 1 otherwise (also when the debug
 # kernel or the modules cannot be built: that is a failure, never a skip).
 set -euo pipefail
@@ -17,10 +19,11 @@ TOP=$(cd "$(dirname "$0")/../.." && pwd)
 . "$TOP/scripts/lib.sh"
 . "$TOP/tests/harness/lib-host.sh"
 
-entry=$("$TOP/scripts/debug-kernel.sh") ||
+series=${ADVEE_DEBUG_KERNEL:-6.12-rt}
+entry=$("$TOP/scripts/debug-kernel.sh" "$series") ||
 	die "debug lane: the debug kernel could not be built (see the messages above)"
 kver=$(cat "$entry/kver")
-"$TOP/scripts/build-kmod.sh" debug "$entry/build" ||
+"$TOP/scripts/build-kmod.sh" "debug-$series" "$entry/build" ||
 	die "debug lane: the project's modules do not build against the debug kernel $kver"
 "$TOP/scripts/build-testprogs.sh" x86_64 ||
 	die "debug lane: the VM test programs do not build"
@@ -59,4 +62,4 @@ fi
 export VMTEST_SLOWDOWN=${VMTEST_SLOWDOWN:-4}
 export VMTEST_APPEND="pci=noacpi kasan_multi_shot${VMTEST_APPEND:+ $VMTEST_APPEND}"
 exec "$TOP/tests/harness/vm-x86.sh" --kernel "$entry/bzImage" --kver "$kver" \
-	--modroot "$entry/modroot" --modules "$BUILD/kmod/debug/modules.list" --lane debug "${suites[@]}" "$@"
+	--modroot "$entry/modroot" --modules "$BUILD/kmod/debug-$series/modules.list" --lane debug "${suites[@]}" "$@"
