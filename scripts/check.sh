@@ -179,6 +179,14 @@ dkms_check() {	# dkms add/build/install in a private tree, then a VM loads its m
 	stage_row "DKMS packaging: dkms add/build/install, modules load in the VM" $?
 }
 
+# The debug lane is the longest track (about 25 minutes of a guest) and needs
+# neither the gates nor the userland build: only its kernel, our modules for
+# it (vm-debug.sh builds them) and the C test programs. In a full run it
+# starts here, next to the stages below, instead of after them.
+stage "test programs (x86_64)" "$TOP/scripts/build-testprogs.sh" x86_64
+stage_row "test programs (x86_64)" $?
+[ "$mode" = full ] && track debug debug_lane
+
 case $mode in
 selected)
 	stage "kernel modules (x86_64)" "$TOP/scripts/build-kmod.sh" x86_64
@@ -192,8 +200,6 @@ esac
 # test binaries would only repeat what the ASan build runs.
 ADVEE_UNIT_TESTS=0 stage "userland (native)" "$TOP/scripts/build-userland.sh" native
 stage_row "userland (native)" $?
-stage "test programs (x86_64)" "$TOP/scripts/build-testprogs.sh" x86_64
-stage_row "test programs (x86_64)" $?
 # The Debian packages of that build (debian/rules reuses it: 21-36 s on a
 # loaded 2-core machine), before the tracks: the install suite installs them
 # (make check TEST=install[/debs] builds them too, other selections do not).
@@ -240,8 +246,9 @@ full)
 	#           suites (user-space stack, install), then DKMS (a guest per
 	#           amd64 kernel), then the kernel suites with rt_lane=1 on
 	#           6.12 PREEMPT_RT, then the armhf cross build;
-	#   debug   the debug lane, as soon as its kernel is there (a cold build
-	#           runs in the background from the start; vm-debug.sh waits);
+	#   debug   the debug lane, started before the gates (above), as soon
+	#           as its kernel is there (a cold build runs in the background
+	#           from the start; vm-debug.sh waits);
 	#   host    the unit tests (the longest stage: a build at a lower
 	#           priority next to three guests), the browser check, lintian
 	#           and the packages' programs.
@@ -250,7 +257,6 @@ full)
 	vmuser_track() { x86_lane x86_64 "${system_sel[@]}"; dkms_check; newer_kernel 6.12-rt; cross_check armhf; }
 	track vm vm_track
 	track vmuser vmuser_track
-	track debug debug_lane
 	track host host_checks
 	wait_tracks
 	;;

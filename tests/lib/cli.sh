@@ -7,7 +7,9 @@
 #                                (docs/install.md): /usr/bin, /usr/sbin and
 #                                /usr/libexec/advee/NAME, one path a line; a
 #                                new program cannot escape the checks
-#   cli_version                  the version of the build (debian/changelog)
+#   cli_version                  the version of the build (debian/changelog),
+#                                read once (dpkg-parsechangelog is a Perl
+#                                program: over a second a call under TCG)
 #   cli_check ROOT PATH [TODO]   3 points for ROOT/PATH: a bad option exits 2
 #                                naming the option on stderr, nothing on
 #                                stdout; --version prints "NAME VERSION" and
@@ -23,6 +25,7 @@ cli_programs() {
 }
 
 cli_version() { dpkg-parsechangelog -l "$CLI_REPO/debian/changelog" -S Version; }
+CLI_VERSION=	# cli_check's copy of it, read on its first call
 
 # cli_run OUT ERR PROGRAM ARGS...: stdout and stderr into files, the status
 # echoed; 10 s at most (a program that starts work on a bad option hangs).
@@ -57,7 +60,8 @@ cli_check() {
 		tap_diag "stdout: $(head -c 200 "$scratch/out" | tr '\n' ' ')"
 		cli_result 1 "$name: a bad option exits 2 and names it on stderr" "$todo"
 	fi
-	want="$name $(cli_version)"
+	[ -n "$CLI_VERSION" ] || CLI_VERSION=$(cli_version)
+	want="$name $CLI_VERSION"
 	rc=$(cli_run "$scratch/out" "$scratch/err" "$root$path" --version)
 	if [ "$rc" = 0 ] && [ "$(cat "$scratch/out")" = "$want" ]; then
 		cli_result 0 "$name --version: '$want', exit 0" "$todo"

@@ -110,27 +110,46 @@ driver_bound() {
 	[ "$(basename "$(readlink "$(client_dir)/driver" 2>/dev/null)")" = max6615 ]
 }
 
-# attr_write_errno FILE VALUE: write VALUE; print "ok" or the error text
+# Each check below runs on the debug kernel, where every process a shell
+# starts costs a tenth of a second or more: the helpers set variables in this
+# shell instead of printing into $(...), and parse with bash builtins.
+ATTR_ERR=${VMTEST_SCRATCH:-/tmp}/max6615-attr.err
+DUMP_OUT=${VMTEST_SCRATCH:-/tmp}/max6615-dump.txt
+
+# attr_write FILE VALUE: write VALUE; WRITE_RES is "ok" or the error text
 # (e.g. "Invalid argument").
-attr_write_errno() {
-	_err=$( { printf '%s\n' "$2" >"$1"; } 2>&1 )
-	if [ -z "$_err" ]; then
-		echo ok
+attr_write() {
+	WRITE_RES=
+	{ printf '%s\n' "$2" >"$1"; } 2>"$ATTR_ERR"
+	read -r WRITE_RES <"$ATTR_ERR" || true
+	if [ -z "$WRITE_RES" ]; then
+		WRITE_RES=ok
 	else
-		echo "${_err##*: }"
+		WRITE_RES=${WRITE_RES##*: }
 	fi
 }
 
-# dump_regs: registers 00h..1Fh as 32 hex bytes ("27 2d 18 ..."), one read each.
+# dump_regs: DUMP = registers 00h..1Fh as 32 hex bytes ("27 2d 18 ..."),
+# one read each.
 dump_regs() {
-	i2cdump -y -f -r 0x00-0x1f "$STUB_BUS" "$CHIP_ADDR" b |
-		awk '/^[01]0:/ { for (i = 2; i <= 17; i++) printf "%s ", $i }'
+	local -a w
+	local i
+	DUMP=
+	i2cdump -y -f -r 0x00-0x1f "$STUB_BUS" "$CHIP_ADDR" b >"$DUMP_OUT" || return 1
+	while read -r -a w; do
+		case ${w[0]:-} in
+		00: | 10:) for ((i = 1; i <= 16; i++)); do DUMP+="${w[i]} "; done ;;
+		esac
+	done <"$DUMP_OUT"
 }
 
-# dump_with REG VALUE DUMP: DUMP with register REG replaced by VALUE (hex).
+# dump_with REG VALUE DUMP: DUMP_WITH = DUMP with register REG replaced by
+# VALUE (hex).
 dump_with() {
-	echo "$3" | awk -v r=$(($1)) -v v="$(printf '%02x' $(($2)))" \
-		'{ $(r + 1) = v; for (i = 1; i <= NF; i++) printf "%s ", $i }'
+	local -a r
+	read -r -a r <<<"$3"
+	printf -v "r[$(($1))]" '%02x' $(($2))
+	printf -v DUMP_WITH '%s ' "${r[@]}"
 }
 
 # LAST_DUMP: the registers as the previous expect_write/expect_reject left
@@ -144,23 +163,28 @@ LAST_DUMP=
 # expect_write ATTR VALUE REG NEWVAL: the write succeeds and changes exactly
 # register REG to NEWVAL, nothing else (H = the hwmon directory).
 expect_write() {
-	_before=${LAST_DUMP:-$(dump_regs)}
-	_res=$(attr_write_errno "$H/$1" "$2")
-	_after=$(dump_regs)
-	LAST_DUMP=$_after
-	tap_is "$1 <- $2 sets reg $3 to $4 and nothing else" "$_res $_after" \
-		"ok $(dump_with "$3" "$4" "$_before")"
+	local before
+	[ -n "$LAST_DUMP" ] || { dump_regs; LAST_DUMP=$DUMP; }
+	before=$LAST_DUMP
+	attr_write "$H/$1" "$2"
+	dump_regs
+	LAST_DUMP=$DUMP
+	dump_with "$3" "$4" "$before"
+	tap_is "$1 <- $2 sets reg $3 to $4 and nothing else" "$WRITE_RES $DUMP" \
+		"ok $DUMP_WITH"
 }
 
 # expect_reject ATTR VALUE ERRTEXT: the write fails with ERRTEXT and no
 # register changes.
 expect_reject() {
-	_before=${LAST_DUMP:-$(dump_regs)}
-	_res=$(attr_write_errno "$H/$1" "$2")
-	_after=$(dump_regs)
-	LAST_DUMP=$_after
-	tap_is "$1 <- $2 is rejected ($3), registers unchanged" "$_res $_after" \
-		"$3 $_before"
+	local before
+	[ -n "$LAST_DUMP" ] || { dump_regs; LAST_DUMP=$DUMP; }
+	before=$LAST_DUMP
+	attr_write "$H/$1" "$2"
+	dump_regs
+	LAST_DUMP=$DUMP
+	tap_is "$1 <- $2 is rejected ($3), registers unchanged" "$WRITE_RES $DUMP" \
+		"$3 $before"
 }
 
 # --- SMBus transactions through the i2c tracepoints (tracefs) ---------------

@@ -26,7 +26,7 @@
 
 #define PORT		0
 #define NPROC		8
-#define DEFAULT_DURATION_S	60
+#define DEFAULT_DURATION_S	30
 #define EVENT_PERIOD_US	20000
 
 #define XFER_TIMEOUT_US	1000000
@@ -40,7 +40,10 @@ struct result {
 
 static unsigned int duration_s = DEFAULT_DURATION_S;
 
-/* RS485_CONCURRENCY_S: seconds of hammering (1..3600), default 60. */
+/*
+ * RS485_CONCURRENCY_S: seconds of hammering (1..3600), default 30 (several
+ * hundred transactions on every lane); soaks ask for more.
+ */
 static void duration_from_env(void)
 {
 	const char *s = getenv("RS485_CONCURRENCY_S");

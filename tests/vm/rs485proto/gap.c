@@ -62,10 +62,13 @@ static void at_rate(int fd, int wfd, struct slave *s, uint32_t baud)
 	two = 2 * (int64_t)ls.char_ns;
 	snprintf(what, sizeof(what), "%u Bd: idle before a request after a response", baud);
 	min = line_report(what, ls.gap_ns, ls.ngaps);
-	tap_ok(!bad && !ls.dropped && ls.ngaps >= 3 * ROUNDS && min >= two,
+	/* a response the simulator stalled in is not judged (rs485-lib.h), but most are */
+	tap_ok(!bad && !ls.dropped && ls.ngaps + ls.nexcused >= 3 * ROUNDS &&
+	       ls.ngaps >= 2 * ROUNDS && min >= two,
 	       "%u Bd: every request (RESEND included) starts >= 2 characters (%lld us) after "
-	       "the response before it: min %.0f us over %u (%u failed transactions)", baud,
-	       (long long)two / 1000, min / 1e3, ls.ngaps, bad);
+	       "the response before it: min %.0f us over %u (%u failed transactions, %u excused "
+	       "after a stalled response)", baud, (long long)two / 1000, min / 1e3, ls.ngaps, bad,
+	       ls.nexcused);
 
 	/* after a timeout shorter than 2 characters */
 	line_scan_start(&ls, wfd);

@@ -147,12 +147,14 @@ int main(void)
 	line_scan_read(&ls);
 	min = line_report("idle before a request after a response", ls.gap_ns, ls.ngaps);
 	line_report("idle before a request after a request", ls.silent_ns, ls.nsilent);
+	line_report("idle before a request after a response the simulator stalled in (excused)",
+		    ls.excused_ns, ls.nexcused);
 	tap_ok(ls.dropped == 0 && ls.ngaps >= 10 && min >= 2 * (int64_t)ls.char_ns &&
 	       !ls.overlaps,
 	       "every request after a response starts >= 2 characters (%u ns) after it "
 	       "(min %lld ns, %u gaps, %u characters overlapped the other direction, "
-	       "%u log events dropped)", 2 * ls.char_ns, (long long)min, ls.ngaps, ls.overlaps,
-	       ls.dropped);
+	       "%u log events dropped; %u excused after a stalled response)", 2 * ls.char_ns,
+	       (long long)min, ls.ngaps, ls.overlaps, ls.dropped, ls.nexcused);
 	if (get_stats(fd, &st))
 		tap_bail("N_RS485_IOC_GET_STATS");
 	tap_ok(st.xfers == st.xfers_ok + st.xfers_failed,

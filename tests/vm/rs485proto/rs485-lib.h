@@ -596,6 +596,17 @@ static inline unsigned int read_queue_drain(int fd, unsigned int *responses)
  * from the end of that request. Characters that start while the other
  * direction's last one is still on the line are counted as overlaps (a
  * collision on a half-duplex bus).
+ *
+ * The slave writes each frame to the wire at once, so its characters follow
+ * each other without idle line, unless the simulator's line engine stalled
+ * (its timer late under TCG). A request that starts less than the gap after
+ * a response is judged, unless that response paused inside itself for longer
+ * than the rest of it plus the gap took: then even a receiver that knew
+ * exactly how many characters were still to come saw the line idle for the
+ * gap after they could have ended (rs485-rx.c). Such a request is set apart
+ * (excused_ns, with the overlaps it made), reported and not judged; the
+ * pause must come before the request and the rest counts every character of
+ * the response, also those that overlapped the request.
  */
 #define LINE_SAMPLES	4096
 
@@ -612,6 +623,17 @@ struct line_scan {
 	int64_t silent_ns[LINE_SAMPLES];	/* idle before a request, after a request */
 	unsigned int nresp;
 	int64_t resp_ns[LINE_SAMPLES];		/* end of a request to its response's start */
+	unsigned int nexcused, excused_overlaps;
+	int64_t excused_ns[LINE_SAMPLES];	/* early requests after a stalled response */
+	int64_t excused_pause_ns;		/* longest of those responses' inner pauses */
+	/* the response since the last request: characters, inner pauses */
+	unsigned int resp_chars;
+	int64_t resp_pause_key;		/* max of pause + (characters before it) * char_ns */
+	int64_t resp_pause_max;
+	/* a request that started less than the gap after a response, until judged */
+	int early;
+	unsigned int early_chars, early_tail, early_overlaps;
+	int64_t early_ns, early_key, early_pause;
 	uint32_t char_ns;
 	struct ts7800_sim_line_event batch[TS7800_SIM_LOG_EVENTS];
 };
@@ -623,6 +645,7 @@ static inline int line_scan_start(struct line_scan *ls, int wfd)
 	ls->prev_end = -1;
 	ls->dir_end[0] = -1;
 	ls->dir_end[1] = -1;
+	ls->resp_pause_key = INT64_MIN;
 	return wire_set_log(wfd, 1);
 }
 
@@ -642,6 +665,53 @@ static inline int cmp_line_event(const void *a, const void *b)
 	return (x->dir > y->dir) - (x->dir < y->dir);
 }
 
+/*
+ * Judge the early request: excused when its response paused inside itself
+ * for longer than the rest of it (characters after the pause, the tail that
+ * overlapped the request included) plus the gap; else it counts as a gap.
+ */
+static inline void line_scan_judge(struct line_scan *ls)
+{
+	int64_t rest = (int64_t)(ls->early_chars + ls->early_tail + 2) * ls->char_ns;
+
+	if (!ls->early)
+		return;
+	ls->early = 0;
+	if (ls->early_key > rest && ls->nexcused < LINE_SAMPLES) {
+		ls->excused_ns[ls->nexcused++] = ls->early_ns;
+		ls->excused_overlaps += ls->early_overlaps;
+		if (ls->early_pause > ls->excused_pause_ns)
+			ls->excused_pause_ns = ls->early_pause;
+		tap_diag("a request %.0f us after a response that paused %.0f us inside itself "
+			 "(%u characters, %u after the request started): excused, not judged",
+			 ls->early_ns / 1e3, ls->early_pause / 1e3, ls->early_chars,
+			 ls->early_tail);
+		return;
+	}
+	ls->overlaps += ls->early_overlaps;
+	if (ls->ngaps < LINE_SAMPLES)
+		ls->gap_ns[ls->ngaps++] = ls->early_ns;
+	tap_diag("a request %.0f us after a response of %u characters (%u after the request "
+		 "started), whose longest inner pause was %.0f us", ls->early_ns / 1e3,
+		 ls->early_chars, ls->early_tail, ls->early_pause / 1e3);
+}
+
+/* A received character that starts at @start: the response's inner pauses. */
+static inline void line_scan_rx(struct line_scan *ls, int64_t start, int64_t char_ns)
+{
+	if (ls->rx_since_req && ls->resp_chars) {
+		int64_t pause = start - ls->dir_end[1];
+
+		if (pause > char_ns / 2) {
+			if (pause + (int64_t)ls->resp_chars * char_ns > ls->resp_pause_key)
+				ls->resp_pause_key = pause + (int64_t)ls->resp_chars * char_ns;
+			if (pause > ls->resp_pause_max)
+				ls->resp_pause_max = pause;
+		}
+	}
+	ls->resp_chars++;
+}
+
 /* Consume what the log holds now. */
 static inline void line_scan_read(struct line_scan *ls)
 {
@@ -656,19 +726,43 @@ static inline void line_scan_read(struct line_scan *ls)
 	for (i = 0; i < n; i++) {
 		int64_t start = line_event_start(&ev[i]);
 		unsigned int dir = ev[i].dir == TS7800_SIM_LOG_RX;
+		int overlap = start < ls->dir_end[!dir];
 
-		if (start < ls->dir_end[!dir])
-			ls->overlaps++;
+		/* the early request's tail: its response's characters that overlap it */
+		if (ls->early && dir && overlap)
+			ls->early_tail++;
+		if (overlap) {
+			if (ls->early)
+				ls->early_overlaps++;
+			else
+				ls->overlaps++;
+		}
+		if (ev[i].dir == TS7800_SIM_LOG_RX)
+			line_scan_rx(ls, start, ev[i].char_ns);
 		if ((int64_t)ev[i].end_ns > ls->dir_end[dir])
 			ls->dir_end[dir] = ev[i].end_ns;
 		if (ev[i].dir == TS7800_SIM_LOG_TX && (ev[i].word & TS7800_SIM_WORD_BIT9)) {
+			line_scan_judge(ls);
 			ls->requests++;
 			ls->char_ns = ev[i].char_ns;
-			if (ls->prev_end >= 0 && ls->rx_since_req && ls->ngaps < LINE_SAMPLES)
+			if (ls->prev_end >= 0 && ls->rx_since_req &&
+			    start - ls->prev_end < 2 * (int64_t)ls->char_ns) {
+				ls->early = 1;
+				ls->early_ns = start - ls->prev_end;
+				ls->early_chars = ls->resp_chars;
+				ls->early_key = ls->resp_pause_key;
+				ls->early_pause = ls->resp_pause_max;
+				ls->early_tail = 0;
+				ls->early_overlaps = 0;
+			} else if (ls->prev_end >= 0 && ls->rx_since_req && ls->ngaps < LINE_SAMPLES) {
 				ls->gap_ns[ls->ngaps++] = start - ls->prev_end;
-			else if (ls->prev_end >= 0 && ls->nsilent < LINE_SAMPLES)
+			} else if (ls->prev_end >= 0 && ls->nsilent < LINE_SAMPLES) {
 				ls->silent_ns[ls->nsilent++] = start - ls->prev_end;
+			}
 			ls->rx_since_req = 0;
+			ls->resp_chars = 0;
+			ls->resp_pause_key = INT64_MIN;
+			ls->resp_pause_max = 0;
 		} else if (ev[i].dir == TS7800_SIM_LOG_RX) {
 			if (!ls->rx_since_req && ls->requests && ls->nresp < LINE_SAMPLES)
 				ls->resp_ns[ls->nresp++] = start - ls->prev_end;
@@ -677,6 +771,8 @@ static inline void line_scan_read(struct line_scan *ls)
 		if ((int64_t)ev[i].end_ns > ls->prev_end)
 			ls->prev_end = ev[i].end_ns;
 	}
+	/* read after a transaction ended: the early request's tail is all in */
+	line_scan_judge(ls);
 }
 
 static inline int cmp_i64(const void *a, const void *b)
