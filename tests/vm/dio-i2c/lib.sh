@@ -4,6 +4,7 @@
 # pins and the simulated MAX6615 behind it (debugfs of the simulator).
 
 . "$VMTEST_REPO/tests/lib/tap.sh"
+. "$VMTEST_REPO/tests/lib/wait.sh"
 
 SIMFS=/sys/kernel/debug/ts7800-sim
 CHIPFS=$SIMFS/max6615
@@ -33,7 +34,7 @@ sim_load() {
 	for _i in $(seq 100); do
 		DIO_CHIP=$(gpiodetect 2>/dev/null | awk '/\[ts7800-dio\]/ { print $1 }')
 		[ -n "$DIO_CHIP" ] && return 0
-		sleep 0.1
+		nap 0.1
 	done
 	return 1
 }
@@ -50,7 +51,7 @@ adapter_load() {
 			grep -q '^TS-7800 DIO I2C' "$a/name" 2>/dev/null && I2C_BUS=${a##*/i2c-}
 		done
 		[ -n "$I2C_BUS" ] && [ -c "/dev/i2c-$I2C_BUS" ] && return 0
-		sleep 0.1
+		nap 0.1
 	done
 	return 1
 }

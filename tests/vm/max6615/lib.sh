@@ -5,6 +5,7 @@
 # i2c-stub is plain memory: status bits stay as written, POR resets nothing.
 
 . "$VMTEST_REPO/tests/lib/tap.sh"
+. "$VMTEST_REPO/tests/lib/wait.sh"
 
 # The BR-FAN1 image, "register value" per line. Hand-computed readings:
 #   temp1 = 39 + 5/8 = 39.625 C, temp2 = 45 + 1/8 = 45.125 C
@@ -75,7 +76,7 @@ stub_load() {
 	# devtmpfs creates the node asynchronously
 	for _i in $(seq 200); do
 		[ -c "/dev/i2c-$STUB_BUS" ] && return 0
-		sleep 0.1
+		nap 0.1
 	done
 	return 1
 }

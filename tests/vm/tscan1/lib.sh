@@ -3,6 +3,7 @@
 # PC/104 bus with a TS-CAN1 card (ts-can1-sim) and the ts-can1 driver.
 
 . "$VMTEST_REPO/tests/lib/tap.sh"
+. "$VMTEST_REPO/tests/lib/wait.sh"
 
 SIMSTATE=/sys/kernel/debug/ts-can1-sim/state
 DEV=/sys/bus/platform/devices/ts-can1
@@ -57,7 +58,7 @@ candump_ready() {
 		for _p in "$1" $(pgrep -P "$1" 2>/dev/null); do
 			ls -l "/proc/$_p/fd" 2>/dev/null | grep -q 'socket:' && { sleep 0.2; return 0; }
 		done
-		sleep 0.1
+		nap 0.1
 	done
 	return 1
 }

@@ -34,7 +34,7 @@ cansend "$IF" 123#DEADBEEF
 cansend "$IF" 12345678#0011223344556677
 for _i in $(seq 50); do
 	[ "$(wc -l <"$OUT")" -ge 4 ] && break
-	sleep 0.1
+	nap 0.1
 done
 wait "$CAND" 2>/dev/null
 CAND=
@@ -53,7 +53,7 @@ for i in $(seq 0 99); do
 done
 for _i in $(seq 50); do
 	[ "$(($(stat rx packets) - rx0))" -ge 100 ] && break
-	sleep 0.1
+	nap 0.1
 done
 tap_is "burst of 100 frames all self-received" "$(($(stat rx packets) - rx0))" 100
 
@@ -69,7 +69,7 @@ candump_ready "$CAND" || tap_diag "candump did not open its socket"
 cansend "$IF" 7FF#CAFE
 for _i in $(seq 50); do
 	[ -s "$OUT" ] && break
-	sleep 0.1
+	nap 0.1
 done
 kill "$CAND" 2>/dev/null; wait "$CAND" 2>/dev/null; CAND=
 tap_ok "loopback off: local echo of 7FF#CAFE" grep -q " $IF 7FF#CAFE$" "$OUT"
