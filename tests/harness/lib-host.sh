@@ -68,8 +68,13 @@ stage_modules() {
 # boot_vm SHELL ALLOWANCE RESULTS CONSOLELOG APPEND QEMU-ARGS...: an
 # interactive guest shell (SHELL=1; does not return) or the timed test run
 # (ALLOWANCE: seconds for boot and module checks on top of the test timeouts).
+# With BOOT_MARK set (a file the guest's runner creates once it has started:
+# guest-run.sh's phases.txt), a guest that has not got that far within twice
+# the allowance is stopped there: a boot that hangs or drowns in kernel
+# reports would otherwise hold the lane for the whole budget (the debug
+# lane's: 25 hours).
 boot_vm() {
-	local shell=$1 allowance=$2 results=$3 log=$4 append=$5 budget
+	local shell=$1 allowance=$2 results=$3 log=$4 append=$5 budget watch=
 	shift 5
 	if [ "$shell" = 1 ]; then
 		say "interactive guest shell; leave with 'exit' (or Ctrl-a x)"
@@ -77,7 +82,34 @@ boot_vm() {
 	fi
 	budget=$(vm_time_budget "$results/tests.list" "$results/modules.list" "$allowance")
 	say "booting $(basename "$1") under TCG: $(grep -c . "$results/tests.list") program(s), time budget ${budget}s"
-	run_qemu "$budget" "$log" "$@" -append "$append"
+	rm -f "$log.pid" "$log.boot"
+	if [ -n "${BOOT_MARK:-}" ]; then
+		boot_watch "$BOOT_MARK" $((2 * allowance)) "$log.pid" "$log.boot" &
+		watch=$!
+	fi
+	run_qemu "$budget" "$log" "$@" -pidfile "$log.pid" -append "$append"
+	if [ -n "$watch" ]; then
+		kill "$watch" 2>/dev/null || true	# it may have ended (the mark came)
+		wait "$watch" 2>/dev/null || true
+	fi
+	[ -s "$log.boot" ] && cat "$log.boot" >>"$log"
+	rm -f "$log.pid" "$log.boot"
+	return 0
+}
+
+# boot_watch MARK SECONDS PIDFILE NOTE: stop the QEMU of PIDFILE when MARK
+# does not exist SECONDS after the start, and say so in NOTE.
+boot_watch() {
+	local mark=$1 secs=$2 pidfile=$3 note=$4 t=0
+	while [ "$t" -lt "$secs" ]; do
+		[ -e "$mark" ] && return 0
+		sleep 2
+		t=$((t + 2))
+	done
+	[ -e "$mark" ] && return 0
+	echo "VMTEST-HOST: the guest had not started its test runner ${secs}s after boot; stopped" >"$note"
+	[ -s "$pidfile" ] && kill "$(cat "$pidfile")" 2>/dev/null
+	return 0
 }
 
 # vm_time_budget TESTLIST MODULELIST BOOT: seconds the whole VM run may take.

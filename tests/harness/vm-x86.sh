@@ -198,7 +198,7 @@ if [ -n "$run" ]; then
 	tail -n +1 -F "$results/logs/main.$(basename "$run" .sh).log" 2>/dev/null &
 	follow=$!
 fi
-boot_vm "$shell" $((60 * slowdown)) "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
+BOOT_MARK=$results/phases.txt boot_vm "$shell" $((60 * slowdown)) "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
 if [ -n "$follow" ]; then
 	sleep 1	# tail -F polls once a second: let it print the last lines
 	kill "$follow" 2>/dev/null

@@ -161,16 +161,21 @@ dump_with() {
 # an attribute read) then shows as a failure of the next check.
 LAST_DUMP=
 
-# expect_write ATTR VALUE REG NEWVAL: the write succeeds and changes exactly
-# register REG to NEWVAL, nothing else (H = the hwmon directory).
-expect_write() {
-	local before
+# write_dumped ATTR VALUE: the registers before (BEFORE), the write
+# (WRITE_RES) and the registers after it (DUMP, also the next LAST_DUMP).
+write_dumped() {
 	[ -n "$LAST_DUMP" ] || { dump_regs; LAST_DUMP=$DUMP; }
-	before=$LAST_DUMP
+	BEFORE=$LAST_DUMP
 	attr_write "$H/$1" "$2"
 	dump_regs
 	LAST_DUMP=$DUMP
-	dump_with "$3" "$4" "$before"
+}
+
+# expect_write ATTR VALUE REG NEWVAL: the write succeeds and changes exactly
+# register REG to NEWVAL, nothing else (H = the hwmon directory).
+expect_write() {
+	write_dumped "$1" "$2"
+	dump_with "$3" "$4" "$BEFORE"
 	tap_is "$1 <- $2 sets reg $3 to $4 and nothing else" "$WRITE_RES $DUMP" \
 		"ok $DUMP_WITH"
 }
@@ -178,14 +183,9 @@ expect_write() {
 # expect_reject ATTR VALUE ERRTEXT: the write fails with ERRTEXT and no
 # register changes.
 expect_reject() {
-	local before
-	[ -n "$LAST_DUMP" ] || { dump_regs; LAST_DUMP=$DUMP; }
-	before=$LAST_DUMP
-	attr_write "$H/$1" "$2"
-	dump_regs
-	LAST_DUMP=$DUMP
+	write_dumped "$1" "$2"
 	tap_is "$1 <- $2 is rejected ($3), registers unchanged" "$WRITE_RES $DUMP" \
-		"$3 $before"
+		"$3 $BEFORE"
 }
 
 # --- SMBus transactions through the i2c tracepoints (tracefs) ---------------
