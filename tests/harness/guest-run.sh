@@ -279,8 +279,10 @@ EOF
 		verdict=ok
 	fi
 	[ "$fail" -gt 0 ] && verdict=fail
-	# A skip's reason is the program's own (its "# SKIP why").
-	[ "$verdict" = skip ] && [ -z "$reason" ] && reason=$skipwhy
+	# A skip's reason is the program's own (its "# SKIP why"), also for a
+	# program that passed with some points skipped: the summary and the
+	# skip policy name it.
+	[ "$verdict" != fail ] && [ "$skip" -gt 0 ] && [ -z "$reason" ] && reason=$skipwhy
 	n=$((n + 1))
 	case $verdict in
 	ok) tap "ok $n $name # ${secs}s" ;;
