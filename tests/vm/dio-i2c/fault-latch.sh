@@ -23,7 +23,8 @@ echo 1000 >"$H/fan1_min"
 tap_is "fan1_fault is 0 while the fan runs" "$(cat "$H/fan1_fault")" 0
 # The fan stalls briefly: the chip latches FAN_STATUS bit 7 ...
 chip_set fan1_rpm 500
-for _i in $(seq 50); do [ $((0x$(model_reg 0x1c) & 0x80)) -ne 0 ] && break; nap 0.1; done
+fan1_latched() { [ $((0x$(model_reg 0x1c) & 0x80)) -ne 0 ]; }
+wait_until 5 fan1_latched
 tap_ok "the simulated chip latched the failure" test $((0x$(model_reg 0x1c) & 0x80)) -ne 0
 # ... and recovers before anybody looks.
 chip_set fan1_rpm 1500

@@ -43,10 +43,13 @@ tap_is "gpioset DIO_8=1 releases it to the pull-up" "$(pin_level 7)" 1
 gpioset "$DIO_CHIP" 7=0
 tap_is "gpioget DIO_8 (input) releases it and reads 1" "$(gpioget "$DIO_CHIP" 7)" 1
 
+# line_held_by LINE CONSUMER: gpioinfo names CONSUMER as the holder of LINE
+line_held_by() { gpioinfo "$DIO_CHIP" | grep -q "\"$1\".*\"$2\""; }
+
 # Held output: a line set by a running gpioset, its consumer visible.
 gpioset --mode=signal "$DIO_CHIP" 8=0 &
 setpid=$!
-for _i in $(seq 50); do gpioinfo "$DIO_CHIP" | grep -q '"DIO_9".*"gpioset"' && break; nap 0.1; done
+wait_until 5 line_held_by DIO_9 gpioset
 tap_ok "gpioinfo names the consumer of a held line" sh -c "gpioinfo $DIO_CHIP | grep -q '\"DIO_9\".*\"gpioset\".*output'"
 tap_is "while held, DIO_9 is low" "$(pin_level 8)" 0
 kill "$setpid"; wait "$setpid" 2>/dev/null
@@ -55,7 +58,7 @@ kill "$setpid"; wait "$setpid" 2>/dev/null
 out=$VMTEST_SCRATCH/gpiomon.out
 timeout 20 gpiomon --num-events=2 --format='%o %e' "$DIO_CHIP" $PAUSE_OFF >"$out" &
 monpid=$!
-for _i in $(seq 50); do gpioinfo "$DIO_CHIP" | grep -q '"DIO_5".*"gpiomon"' && break; nap 0.1; done
+wait_until 5 line_held_by DIO_5 gpiomon
 sleep 0.2
 echo 1 >"$DIOFS/pause"
 sleep 0.3
@@ -68,7 +71,7 @@ tap_is "PAUSE asserted then released: a falling then a rising edge on DIO_5" \
 # Only the requested edge, on the right line.
 timeout 20 gpiomon --num-events=1 --rising-edge --format='%o %e' "$DIO_CHIP" $FANFAIL_OFF >"$out" &
 monpid=$!
-for _i in $(seq 50); do gpioinfo "$DIO_CHIP" | grep -q '"DIO_7".*"gpiomon"' && break; nap 0.1; done
+wait_until 5 line_held_by DIO_7 gpiomon
 sleep 0.2
 echo 1 >"$DIOFS/pause"		# another line: no event
 echo 1 >"$DIOFS/fan_fail"	# falling: filtered out

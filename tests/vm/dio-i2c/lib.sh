@@ -31,12 +31,11 @@ sim_load() {
 	debugfs_mount || return 1
 	modprobe ts7800_dio || return 1
 	modprobe ts7800_sim "$@" || return 1
-	for _i in $(seq 100); do
-		DIO_CHIP=$(gpiodetect 2>/dev/null | awk '/\[ts7800-dio\]/ { print $1 }')
-		[ -n "$DIO_CHIP" ] && return 0
-		nap 0.1
-	done
-	return 1
+	wait_until 10 _dio_chip
+}
+_dio_chip() {	# sets DIO_CHIP once gpiolib lists the DIO header
+	DIO_CHIP=$(gpiodetect 2>/dev/null | awk '/\[ts7800-dio\]/ { print $1 }')
+	[ -n "$DIO_CHIP" ]
 }
 
 # adapter_load [PARAMS]: the bit-banged adapter and i2c-dev; sets I2C_BUS.
@@ -46,14 +45,14 @@ adapter_load() {
 		modprobe i2c-dev || return 1
 		I2C_DEV_LOADED_BY_US=1
 	fi
-	for _i in $(seq 100); do
-		for a in /sys/bus/i2c/devices/i2c-*; do
-			grep -q '^TS-7800 DIO I2C' "$a/name" 2>/dev/null && I2C_BUS=${a##*/i2c-}
-		done
-		[ -n "$I2C_BUS" ] && [ -c "/dev/i2c-$I2C_BUS" ] && return 0
-		nap 0.1
+	wait_until 10 _i2c_bus
+}
+_i2c_bus() {	# sets I2C_BUS once the adapter and its i2c-dev node are there
+	local a
+	for a in /sys/bus/i2c/devices/i2c-*; do
+		grep -q '^TS-7800 DIO I2C' "$a/name" 2>/dev/null && I2C_BUS=${a##*/i2c-}
 	done
-	return 1
+	[ -n "$I2C_BUS" ] && [ -c "/dev/i2c-$I2C_BUS" ]
 }
 
 # chip_set FILE VALUE: a knob of the simulated MAX6615

@@ -74,11 +74,7 @@ stub_load() {
 		I2C_DEV_LOADED_BY_US=1
 	fi
 	# devtmpfs creates the node asynchronously
-	for _i in $(seq 200); do
-		[ -c "/dev/i2c-$STUB_BUS" ] && return 0
-		nap 0.1
-	done
-	return 1
+	wait_until 20 test -c "/dev/i2c-$STUB_BUS"
 }
 
 # image_load [IMAGE]: write a register image ("reg value" lines) into the stub.

@@ -604,9 +604,9 @@ static inline unsigned int read_queue_drain(int fd, unsigned int *responses)
  * than the rest of it plus the gap took: then even a receiver that knew
  * exactly how many characters were still to come saw the line idle for the
  * gap after they could have ended (rs485-rx.c). Such a request is set apart
- * (excused_ns, with the overlaps it made), reported and not judged; the
- * pause must come before the request and the rest counts every character of
- * the response, also those that overlapped the request.
+ * (excused_ns; the overlaps it made are not counted), reported and not
+ * judged; the pause must come before the request and the rest counts every
+ * character of the response, also those that overlapped the request.
  */
 #define LINE_SAMPLES	4096
 
@@ -623,9 +623,8 @@ struct line_scan {
 	int64_t silent_ns[LINE_SAMPLES];	/* idle before a request, after a request */
 	unsigned int nresp;
 	int64_t resp_ns[LINE_SAMPLES];		/* end of a request to its response's start */
-	unsigned int nexcused, excused_overlaps;
+	unsigned int nexcused;
 	int64_t excused_ns[LINE_SAMPLES];	/* early requests after a stalled response */
-	int64_t excused_pause_ns;		/* longest of those responses' inner pauses */
 	/* the response since the last request: characters, inner pauses */
 	unsigned int resp_chars;
 	int64_t resp_pause_key;		/* max of pause + (characters before it) * char_ns */
@@ -679,9 +678,6 @@ static inline void line_scan_judge(struct line_scan *ls)
 	ls->early = 0;
 	if (ls->early_key > rest && ls->nexcused < LINE_SAMPLES) {
 		ls->excused_ns[ls->nexcused++] = ls->early_ns;
-		ls->excused_overlaps += ls->early_overlaps;
-		if (ls->early_pause > ls->excused_pause_ns)
-			ls->excused_pause_ns = ls->early_pause;
 		tap_diag("a request %.0f us after a response that paused %.0f us inside itself "
 			 "(%u characters, %u after the request started): excused, not judged",
 			 ls->early_ns / 1e3, ls->early_pause / 1e3, ls->early_chars,

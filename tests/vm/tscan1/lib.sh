@@ -54,11 +54,13 @@ sim_field() { awk -v k="$1" '{ for (i = 1; i < NF; i++) if ($i == k) { print $(i
 # as a child of PID, e.g. under timeout) has opened its CAN socket, so that
 # no frame sent afterwards can be missed by a slow start under emulation.
 candump_ready() {
-	for _i in $(seq 50); do
-		for _p in "$1" $(pgrep -P "$1" 2>/dev/null); do
-			ls -l "/proc/$_p/fd" 2>/dev/null | grep -q 'socket:' && { sleep 0.2; return 0; }
-		done
-		nap 0.1
+	wait_until 5 _has_socket "$1" || return 1
+	sleep 0.2
+}
+_has_socket() {	# PID or one of its children holds a socket
+	local p
+	for p in "$1" $(pgrep -P "$1" 2>/dev/null); do
+		ls -l "/proc/$p/fd" 2>/dev/null | grep -q 'socket:' && return 0
 	done
 	return 1
 }
