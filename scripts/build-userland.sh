@@ -6,10 +6,11 @@
 #                                  binaries, stripped), unit tests (none with
 #                                  ADVEE_UNIT_TESTS=0: what the VMs, the demo
 #                                  and the browser check run needs no tests)
-#   asan    build/userland-asan    -O1 (what the sanitizers' authors advise:
-#                                  a third less compile time than -O2; the
-#                                  -O2 build that ships is what every VM
-#                                  suite runs) with line tables only (-g1:
+#   asan    build/userland-asan    -O1 (what the sanitizers' authors advise,
+#                                  and less compile time than -O2, not
+#                                  measured alone; the -O2 build that ships
+#                                  is what every VM suite runs) with line
+#                                  tables only (-g1:
 #                                  file:line in sanitizer reports),
 #                                  AddressSanitizer + UBSan: the unit tests
 #                                  and the programs they start
