@@ -10,8 +10,8 @@
 #                                  and less compile time than -O2, not
 #                                  measured alone; the -O2 build that ships
 #                                  is what every VM suite runs) with line
-#                                  tables only (-g1:
-#                                  file:line in sanitizer reports),
+#                                  tables only (-g1: file:line in sanitizer
+#                                  reports),
 #                                  AddressSanitizer + UBSan: the unit tests
 #                                  and the programs they start
 #   armhf   build/userland-armhf   cross (arm-linux-gnueabihf), -O2, no tests
