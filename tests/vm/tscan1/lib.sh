@@ -50,17 +50,17 @@ driver_bound() { [ -e "$DEV/driver" ]; }
 # sim_field KEY: the value after KEY in the simulator's state file
 sim_field() { awk -v k="$1" '{ for (i = 1; i < NF; i++) if ($i == k) { print $(i + 1); exit } }' "$SIMSTATE"; }
 
-# candump_ready PID: wait (up to 5 s) until the candump started as PID (or
-# as a child of PID, e.g. under timeout) has opened its CAN socket, so that
-# no frame sent afterwards can be missed by a slow start under emulation.
+# candump_ready PID: wait (up to 30 s) until the candump started as PID (or
+# as a child of PID, e.g. under timeout) has bound its CAN socket to $IF:
+# the CAN core then lists a receiver for $IF in /proc/net/can/rcvlist_all
+# (candump with or without an identifier filter registers one there), and
+# no frame sent afterwards can be missed. An open socket alone is not
+# enough: on the debug kernel candump's bind() came well after socket().
+# The caller has no other raw CAN socket on $IF at that moment.
 candump_ready() {
-	wait_until 5 _has_socket "$1" || return 1
-	sleep 0.2
+	wait_until 30 _can_bound "$1" || return 1
 }
-_has_socket() {	# PID or one of its children holds a socket
-	local p
-	for p in "$1" $(pgrep -P "$1" 2>/dev/null); do
-		ls -l "/proc/$p/fd" 2>/dev/null | grep -q 'socket:' && return 0
-	done
-	return 1
+_can_bound() {
+	kill -0 "$1" 2>/dev/null || return 1
+	grep -q "^ *$IF " /proc/net/can/rcvlist_all 2>/dev/null
 }

@@ -32,7 +32,7 @@ candump_ready "$CAND" || tap_diag "candump did not open its socket"
 rx0=$(stat rx packets)
 cansend "$IF" 123#DEADBEEF
 cansend "$IF" 12345678#0011223344556677
-wait_lines "$OUT" . 4 5
+wait_lines "$OUT" . 4 20
 wait "$CAND" 2>/dev/null
 CAND=
 tap_diag "candump: $(tr '\n' ' ' <"$OUT")"
@@ -49,7 +49,7 @@ for i in $(seq 0 99); do
 	cansend "$IF" "$(printf '%03X' "$i")#$(printf '%02X' "$i")" || break
 done
 rx_since() { [ "$(($(stat rx packets) - rx0))" -ge "$1" ]; }
-wait_until 5 rx_since 100
+wait_until 20 rx_since 100
 tap_is "burst of 100 frames all self-received" "$(($(stat rx packets) - rx0))" 100
 
 # Loopback off: the frame leaves (the virtual second node acks it), nothing
@@ -62,7 +62,7 @@ candump -L -n 1 "$IF" >"$OUT" 2>&1 &
 CAND=$!
 candump_ready "$CAND" || tap_diag "candump did not open its socket"
 cansend "$IF" 7FF#CAFE
-wait_until 5 test -s "$OUT"
+wait_until 20 test -s "$OUT"
 kill "$CAND" 2>/dev/null; wait "$CAND" 2>/dev/null; CAND=
 tap_ok "loopback off: local echo of 7FF#CAFE" grep -q " $IF 7FF#CAFE$" "$OUT"
 tap_is "loopback off: no self reception" "$(($(stat rx packets) - rx0))" 0

@@ -22,13 +22,14 @@ tap_ok "interface down: the chip in reset mode refuses frames" \
 ip link set "$IF" type can bitrate 500000
 ip link set "$IF" up
 
-# dump: wait for candump (it exits after its -n frames, or timeout kills it)
+# dump: wait for candump (it exits after its -n frames; the timeout of 60 s
+# only ends a candump that would otherwise wait forever)
 dump() {
 	wait "$CAND" 2>/dev/null; CAND=
 	tap_diag "candump: $(tr '\n' ' ' <"$OUT")"
 }
 
-timeout 10 candump -L -n 3 "$IF" >"$OUT" 2>&1 &
+timeout 60 candump -L -n 3 "$IF" >"$OUT" 2>&1 &
 CAND=$!
 candump_ready "$CAND" || tap_diag "candump did not open its socket"
 rx0=$(stat rx_packets)
@@ -43,7 +44,7 @@ tap_is "rx_packets +3" "$(($(stat rx_packets) - rx0))" 3
 tap_is "nothing transmitted" "$(stat tx_packets)" 0
 
 # Six frames at once into a four-frame FIFO; ",#ffffffff" adds error frames.
-timeout 10 candump -L -n 5 "$IF,0:0,#ffffffff" >"$OUT" 2>&1 &
+timeout 60 candump -L -n 5 "$IF,0:0,#ffffffff" >"$OUT" 2>&1 &
 CAND=$!
 candump_ready "$CAND" || tap_diag "candump did not open its socket"
 rx0=$(stat rx_packets)
