@@ -38,7 +38,7 @@
 # ccache never changes what is built; a cache that cannot be created only
 # costs time and is said.
 # The cross builds link Debian's armhf/armel libraries from the sysroot of
-# scripts/fetch-arm-sysroot.sh (.cache/arm/ARCH/sysroot) and end with an ABI
+# scripts/fetch-arm-sysroot.sh ($ADVEE_CACHE/arm/ARCH/sysroot) and end with an ABI
 # check of every ELF file they produced.
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"

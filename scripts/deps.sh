@@ -3,7 +3,7 @@
 #
 # deps.sh: install what this machine lacks to build and test the project
 # (Debian 12). Idempotent: installs only missing packages, runs apt-get update
-# only when something is missing, then fetches the ARM kernels into .cache/.
+# only when something is missing, then fetches the ARM kernels into $ADVEE_CACHE (lib.sh).
 # Packages are listed in scripts/packages.txt (one per line, # comments).
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
@@ -48,16 +48,22 @@ fi
 kver=$("$TOP/scripts/kver.sh")
 [ "$kver" != none ] || die "no amd64 6.1 kernel with headers after install"
 
-# ARM kernels for cross builds and the ARM VM lane (cached in .cache/arm).
+# The fetches below fill $ADVEE_CACHE, which the clones of this machine share:
+# one deps.sh at a time does it, a second one then finds everything there.
+mkdir -p "$ADVEE_CACHE"
+exec 9>"$ADVEE_CACHE/.deps.lock"
+flock 9
+
+# ARM kernels for cross builds and the ARM VM lane (cached in $ADVEE_CACHE/arm).
 arm_tree armhf armmp >/dev/null
 arm_tree armel marvell >/dev/null
 # The Debian armhf tools the ARM VM lane's shell programs call.
 "$TOP/scripts/fetch-arm-userland.sh" armhf >/dev/null
 # Debian's 6.12 amd64 kernels (stock and PREEMPT_RT) from bookworm-backports,
-# with linux-source-6.12 (cached in .cache/bpo/amd64).
+# with linux-source-6.12 (cached in $ADVEE_CACHE/bpo/amd64).
 "$TOP/scripts/fetch-bpo-kernel.sh" >/dev/null
 # checkpatch and modpost sources from linux-source-6.1 and -6.12 (cached in
-# .cache/linux-source, .cache/linux-source-6.12).
+# $ADVEE_CACHE/linux-source, linux-source-6.12).
 "$TOP/scripts/kernel-source.sh" >/dev/null
 "$TOP/scripts/kernel-source.sh" 6.12 >/dev/null
 say "dependencies ready (x86_64 kernel $kver)"

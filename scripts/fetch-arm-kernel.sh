@@ -14,7 +14,7 @@ set -euo pipefail
 debarch=${1:?debian architecture (armhf|armel)}
 flavour=${2:?kernel flavour (armmp|marvell)}
 . "$(dirname "$0")/lib.sh"
-cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$debarch
+cache=$ADVEE_CACHE/arm/$debarch
 mkdir -p "$cache/debs"
 private_apt "$cache" "$debarch"
 

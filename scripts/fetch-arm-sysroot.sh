@@ -8,12 +8,12 @@
 # downloaded with apt-get download through the
 # private apt setup of fetch-arm-kernel.sh (its lists dir; no foreign
 # architecture is ever added to dpkg) and extracted into
-# .cache/arm/DEBARCH/sysroot. Prints that directory.
+# $ADVEE_CACHE/arm/DEBARCH/sysroot (lib.sh). Prints that directory.
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
 debarch=${1:?debian architecture (armhf|armel)}
-cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$debarch
+cache=$ADVEE_CACHE/arm/$debarch
 arm_apt_opts "$debarch"
 
 # The -dev packages and the runtime libraries behind every .so they link

@@ -6,7 +6,7 @@
 # for the ARM VM lane, so that the shell programs of a portable suite run there
 # exactly as on the x86_64 lane. Downloaded with apt-get download through the
 # private apt setup of fetch-arm-kernel.sh (no foreign architecture is ever
-# added to dpkg) and extracted into .cache/arm/DEBARCH/userland. Prints that
+# added to dpkg) and extracted into $ADVEE_CACHE/arm/DEBARCH/userland (lib.sh). Prints that
 # directory.
 #
 # Only the tools below and the libraries they load are taken: maintainer
@@ -16,7 +16,7 @@ set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
 debarch=${1:?debian architecture (armhf|armel)}
-cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$debarch
+cache=$ADVEE_CACHE/arm/$debarch
 arm_apt_opts "$debarch"
 
 # What the VM test programs run, by package (the x86_64 guest has them from

@@ -16,7 +16,7 @@
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
-cache=${ADVEE_CACHE:-$TOP/.cache}/bpo/amd64
+cache=$ADVEE_CACHE/bpo/amd64
 root=$cache/root
 stamp=$cache/extracted.stamp
 if [ -f "$stamp" ]; then

@@ -2,15 +2,15 @@
 # SPDX-License-Identifier: GPL-2.0
 #
 # kernel-source.sh [6.12] [PATH...]: extract parts of Debian's linux-source-6.1
-# tarball (the sources of the kernel we run) into .cache/linux-source, or of
+# tarball (the sources of the kernel we run) into $ADVEE_CACHE/linux-source (lib.sh), or of
 # bookworm-backports' linux-source-6.12 (fetch-bpo-kernel.sh) into
-# .cache/linux-source-6.12, and print that directory. Used for checkpatch.pl,
+# $ADVEE_CACHE/linux-source-6.12, and print that directory. Used for checkpatch.pl,
 # for the private headers ts7800-can checks its copy against and for
 # building a modpost that knows ARM's struct layouts. Never committed.
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
-series=6.1 dest=${ADVEE_CACHE:-$TOP/.cache}/linux-source
+series=6.1 dest=$ADVEE_CACHE/linux-source
 if [ "${1:-}" = 6.12 ]; then
 	series=6.12 dest=$dest-6.12
 	tarball=$(ls "$("$TOP/scripts/fetch-bpo-kernel.sh")"/usr/src/linux-source-6.12.tar.* | head -1)

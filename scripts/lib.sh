@@ -3,6 +3,22 @@
 TOP=${TOP:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}
 BUILD=${BUILD:-$TOP/build}
 KSRC_DIRS="kernel tsuart-fix rs485proto i2c-max6615 tests/kmod tests/sim ts7800-can"
+# ADVEE_CACHE: what the scripts fetch and extract from Debian's archive (ARM
+# kernels and sysroots, the 6.12 kernels, kernel sources). Like the debug
+# kernel and the compiler cache it lives outside the repository, in
+# /var/cache/advee/fetch, so that a fresh clone on the same machine (every CI
+# run) does not download and unpack it again (58 s at the start of each run);
+# .cache/ in the repository where that directory cannot be written. Each
+# fetch script checks its entry against what it wants (package lists,
+# stamps, paths) before reusing it.
+if [ -z "${ADVEE_CACHE:-}" ]; then
+	if mkdir -p /var/cache/advee/fetch 2>/dev/null && [ -w /var/cache/advee/fetch ]; then
+		ADVEE_CACHE=/var/cache/advee/fetch
+	else
+		ADVEE_CACHE=$TOP/.cache
+	fi
+fi
+export ADVEE_CACHE
 
 say()  { printf '==> %s\n' "$*" >&2; }
 die()  { printf 'error: %s\n' "$*" >&2; exit 1; }
@@ -66,7 +82,7 @@ private_apt() {
 # private DEBARCH setup of fetch-arm-kernel.sh under the cache, running that
 # script first when the lists are not there yet.
 arm_apt_opts() {
-	local cache=${ADVEE_CACHE:-$TOP/.cache}/arm/$1
+	local cache=$ADVEE_CACHE/arm/$1
 	if ! compgen -G "$cache/lists/*_Packages*" >/dev/null; then
 		"$TOP/scripts/fetch-arm-kernel.sh" "$1" "$(arm_flavour "$1")" >/dev/null
 	fi
