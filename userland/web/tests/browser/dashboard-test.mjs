@@ -401,7 +401,14 @@ async function main() {
   await c.keyboard.down("ArrowUp");
   await sleep(300);
   tr = monoS();
-  browser2.process().kill("SIGKILL");
+  // The whole browser dies at once, as when it crashes or its machine loses
+  // power: its process group (puppeteer starts Chromium detached, in a group
+  // of its own). Killing the main process alone left the renderer running
+  // for a moment under load: its key repeat, sent through a network process
+  // that still held the connection, reached the bridge after the bridge's
+  // stop, a drive command from a client that was still connected (CI run
+  // of 27 Nov, a 2-core machine with three guests beside it).
+  process.kill(-browser2.process().pid, "SIGKILL");
   stop = await waitLcm(tr, isStop);
   const killMs = stop ? (stop.t - tr) * 1000 : Infinity;
   figure("browser killed while driving to stop on LCM (ms)", killMs.toFixed(1));
