@@ -276,7 +276,11 @@ async function main() {
   const browser2 = await launch();
   const b = await openPage(browser2.defaultBrowserContext());
   await login(b, OP2, PW2);
-  row(await b.$eval("#lease", (e) => e.textContent) === `control: ${OP1}`, `the second page sees ${OP1} holds control`);
+  // The lease's holder arrives in its own message after the login's: wait for
+  // it (a CI run under load read the text before it came, and found it empty).
+  const seen = await b.waitForFunction((u) => document.getElementById("lease").textContent === `control: ${u}`,
+                                       {}, OP1).then(() => true, () => false);
+  row(seen, `the second page sees ${OP1} holds control`, await b.$eval("#lease", (e) => e.textContent));
   await a.keyboard.down("ArrowUp");
   await sleep(200);
   t0 = monoS();
