@@ -723,11 +723,17 @@ static inline void line_scan_read(struct line_scan *ls)
 		int64_t start = line_event_start(&ev[i]);
 		unsigned int dir = ev[i].dir == TS7800_SIM_LOG_RX;
 		int overlap = start < ls->dir_end[!dir];
+		int request = ev[i].dir == TS7800_SIM_LOG_TX && (ev[i].word & TS7800_SIM_WORD_BIT9);
 
 		/* the early request's tail: its response's characters that overlap it */
 		if (ls->early && dir && overlap)
 			ls->early_tail++;
-		if (overlap) {
+		/*
+		 * A request's address character that overlaps is counted below, once
+		 * it is known whether it starts an early request: its overlap is then
+		 * that request's (excused with it after a stalled response).
+		 */
+		if (overlap && !request) {
 			if (ls->early)
 				ls->early_overlaps++;
 			else
@@ -737,7 +743,7 @@ static inline void line_scan_read(struct line_scan *ls)
 			line_scan_rx(ls, start, ev[i].char_ns);
 		if ((int64_t)ev[i].end_ns > ls->dir_end[dir])
 			ls->dir_end[dir] = ev[i].end_ns;
-		if (ev[i].dir == TS7800_SIM_LOG_TX && (ev[i].word & TS7800_SIM_WORD_BIT9)) {
+		if (request) {
 			line_scan_judge(ls);
 			ls->requests++;
 			ls->char_ns = ev[i].char_ns;
@@ -754,6 +760,12 @@ static inline void line_scan_read(struct line_scan *ls)
 				ls->gap_ns[ls->ngaps++] = start - ls->prev_end;
 			} else if (ls->prev_end >= 0 && ls->nsilent < LINE_SAMPLES) {
 				ls->silent_ns[ls->nsilent++] = start - ls->prev_end;
+			}
+			if (overlap) {
+				if (ls->early)
+					ls->early_overlaps++;
+				else
+					ls->overlaps++;
 			}
 			ls->rx_since_req = 0;
 			ls->resp_chars = 0;
