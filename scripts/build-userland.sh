@@ -27,14 +27,15 @@
 # namespace does not separate the files of one batch).
 # Compiler cache: every compilation goes through ccache, whose cache lives
 # outside the repository like the debug kernel's, in
-# ${ADVEE_CCACHE:-/var/cache/advee/ccache} (ADVEE_CCACHE=off: no cache), so a
-# fresh CI clone on the same machine compiles only what changed since the last
-# run (a native build went from 276 to 37 CPU-s in a second clone at another
-# path). For hits across clones at different paths: CCACHE_BASEDIR makes the
-# paths under the clone relative on the command line, CCACHE_NOHASHDIR leaves
-# the working directory out of the hash, and -ffile-prefix-map turns the
-# clone's path into "" in __FILE__, std::source_location and the debug
-# information (file names in reports are then relative to the repository).
+# ${ADVEE_CCACHE:-$ADVEE_MACHINE_CACHE/ccache} (scripts/lib.sh;
+# ADVEE_CCACHE=off: no cache), so a fresh CI clone on the same machine
+# compiles only what changed since the last run (a native build went from 276
+# to 37 CPU-s in a second clone at another path). For hits across clones at
+# different paths: CCACHE_BASEDIR makes the paths under the clone relative on
+# the command line, CCACHE_NOHASHDIR leaves the working directory out of the
+# hash, and -ffile-prefix-map turns the clone's path into "" in __FILE__,
+# std::source_location and the debug information (file names in reports are
+# then relative to the repository).
 # ccache never changes what is built; a cache that cannot be created only
 # costs time and is said.
 # The cross builds link Debian's armhf/armel libraries from the sysroot of
@@ -68,7 +69,7 @@ armhf|armel)
 esac
 prefix_map="-ffile-prefix-map=$TOP/="
 args+=("-DCMAKE_C_FLAGS=$prefix_map" "-DCMAKE_CXX_FLAGS=$prefix_map")
-ccache_dir=${ADVEE_CCACHE:-/var/cache/advee/ccache}
+ccache_dir=${ADVEE_CCACHE:-$ADVEE_MACHINE_CACHE/ccache}
 if [ "$ccache_dir" != off ]; then
 	if ! command -v ccache >/dev/null; then
 		say "userland ($variant): no ccache on this machine: every file is compiled"

@@ -14,7 +14,7 @@
 # The cache lives outside the repository (a fresh CI clone on the same machine
 # reuses it), keyed by the source package version, the config fragments and
 # the build recipe below:
-#   ${ADVEE_KCACHE:-/var/cache/advee}/debug-kernel/
+#   ${ADVEE_KCACHE:-$ADVEE_MACHINE_CACHE}/debug-kernel/ (scripts/lib.sh)
 #     src/VERSION/linux-source-SERIES/ the extracted sources (shared by all keys)
 #     KEY/bzImage                     the kernel image
 #     KEY/kver                        its release (uname -r)
@@ -51,7 +51,7 @@ case ${1:-${ADVEE_DEBUG_KERNEL:-6.12-rt}} in
 esac
 [ -n "$srcver" ] || srcver=$(stat -c '%s-%Y' "$tarball")
 key=$({ echo "recipe $recipe"; echo "source $srcver"; cat "${fragments[@]}"; } | sha256sum | cut -c1-16)
-cache=${ADVEE_KCACHE:-/var/cache/advee}/debug-kernel
+cache=${ADVEE_KCACHE:-$ADVEE_MACHINE_CACHE}/debug-kernel
 entry=$cache/$key
 
 if [ -e "$entry/ready" ]; then

@@ -3,18 +3,22 @@
 TOP=${TOP:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}
 BUILD=${BUILD:-$TOP/build}
 KSRC_DIRS="kernel tsuart-fix rs485proto i2c-max6615 tests/kmod tests/sim ts7800-can"
+# ADVEE_MACHINE_CACHE: the root of the caches that outlive a clone, so that a
+# fresh clone on the same machine (every CI run) reuses what earlier runs
+# built or fetched: debug-kernel/ (scripts/debug-kernel.sh, ADVEE_KCACHE),
+# ccache/ (scripts/build-userland.sh, ADVEE_CCACHE) and fetch/ (ADVEE_CACHE).
+ADVEE_MACHINE_CACHE=${ADVEE_MACHINE_CACHE:-/var/cache/advee}
+export ADVEE_MACHINE_CACHE
 # ADVEE_CACHE: what the scripts fetch and extract from Debian's archive (ARM
-# kernels and sysroots, the 6.12 kernels, kernel sources). Like the debug
-# kernel and the compiler cache it lives outside the repository, in
-# /var/cache/advee/fetch, so that a fresh clone on the same machine (every CI
-# run) does not download and unpack it again (58 s at the start of each run);
-# .cache/ in the repository where that directory cannot be written. Each
-# fetch script checks its entry against what it wants (package lists,
+# kernels and sysroots, the 6.12 kernels, kernel sources), in
+# $ADVEE_MACHINE_CACHE/fetch (58 s at the start of each run when it was in the
+# clone); .cache/ in the repository where that directory cannot be written.
+# Each fetch script checks its entry against what it wants (package lists,
 # stamps, paths) before reusing it.
 if [ -z "${ADVEE_CACHE:-}" ]; then
-	if mkdir -p /var/cache/advee/fetch 2>/dev/null && [ -w /var/cache/advee/fetch ]; then
-		ADVEE_CACHE=/var/cache/advee/fetch
-	else
+	ADVEE_CACHE=$ADVEE_MACHINE_CACHE/fetch
+	if ! { [ -d "$ADVEE_CACHE" ] || mkdir -p "$ADVEE_CACHE" 2>/dev/null; } ||
+	   [ ! -w "$ADVEE_CACHE" ]; then
 		ADVEE_CACHE=$TOP/.cache
 	fi
 fi

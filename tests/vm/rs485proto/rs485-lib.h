@@ -62,7 +62,7 @@ enum {
 	 * discipline learns of it.
 	 */
 	I_CUT_OVERRUN = 0x0e,
-	I_DELAY = 0x0f,		/* ACK after slave.delay_us, data = request data */
+	I_DELAY = 0x0f,		/* ACK after slave.hold, then slave.delay_us; data = request data */
 	/*
 	 * Every other execution (the 1st, 3rd...) sends an EVENT frame of its
 	 * own and no answer; the others answer ACK.
@@ -189,6 +189,7 @@ struct slave {
 	pthread_mutex_t send_lock;	/* one frame at a time on the wire */
 	atomic_uint mute_resends;	/* leave this many RESENDs unanswered */
 	atomic_uint delay_us;		/* I_DELAY */
+	atomic_int hold;		/* I_DELAY: wait while set (10 s at most) */
 	atomic_uint overrun_missed;	/* I_CUT_OVERRUN: no overrun within 2 s */
 	/* unsolicited events (event_period_us > 0): a second thread */
 	unsigned int event_period_us;
@@ -319,8 +320,11 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		usleep(100000);
 		/* fall through */
 	case I_DELAY:
-		if (instr == I_DELAY)
+		if (instr == I_DELAY) {
+			for (int ms = 0; s->hold && ms < 10000; ms++)
+				usleep(1000);
 			usleep(s->delay_us);
+		}
 		/* fall through */
 	case I_ECHO:
 	case I_EVENT_FIRST:
