@@ -641,7 +641,7 @@ struct line_scan {
 	struct ts7800_sim_line_event batch[TS7800_SIM_LOG_EVENTS];
 };
 
-static inline int line_scan_start(struct line_scan *ls, int wfd)
+static inline void line_scan_init(struct line_scan *ls, int wfd)
 {
 	memset(ls, 0, sizeof(*ls));
 	ls->wfd = wfd;
@@ -649,6 +649,11 @@ static inline int line_scan_start(struct line_scan *ls, int wfd)
 	ls->dir_end[0] = -1;
 	ls->dir_end[1] = -1;
 	ls->resp_pause_key = INT64_MIN;
+}
+
+static inline int line_scan_start(struct line_scan *ls, int wfd)
+{
+	line_scan_init(ls, wfd);
 	return wire_set_log(wfd, 1);
 }
 
@@ -712,16 +717,15 @@ static inline void line_scan_rx(struct line_scan *ls, int64_t start, int64_t cha
 	ls->resp_chars++;
 }
 
-/* Consume what the log holds now. */
-static inline void line_scan_read(struct line_scan *ls)
+/*
+ * Scan @n line events (any order): everything the line showed until now, or
+ * the rest of it since the last call. rs485proto/scan feeds it made-up lines.
+ */
+static inline void line_scan_feed(struct line_scan *ls, struct ts7800_sim_line_event *ev,
+				  unsigned int n)
 {
-	struct ts7800_sim_line_event *ev = ls->batch;
-	unsigned int n = 0, i;
-	int got;
+	unsigned int i;
 
-	while (n < TS7800_SIM_LOG_EVENTS &&
-	       (got = wire_read_log(ls->wfd, ev + n, TS7800_SIM_LOG_EVENTS - n, &ls->dropped)) > 0)
-		n += got;
 	qsort(ev, n, sizeof(ev[0]), cmp_line_event);
 	for (i = 0; i < n; i++) {
 		int64_t start = line_event_start(&ev[i]);
@@ -785,6 +789,19 @@ static inline void line_scan_read(struct line_scan *ls)
 	}
 	/* read after a transaction ended: the early request's tail is all in */
 	line_scan_judge(ls);
+}
+
+/* Consume what the log holds now. */
+static inline void line_scan_read(struct line_scan *ls)
+{
+	unsigned int n = 0;
+	int got;
+
+	while (n < TS7800_SIM_LOG_EVENTS &&
+	       (got = wire_read_log(ls->wfd, ls->batch + n, TS7800_SIM_LOG_EVENTS - n,
+				    &ls->dropped)) > 0)
+		n += got;
+	line_scan_feed(ls, ls->batch, n);
 }
 
 static inline int cmp_i64(const void *a, const void *b)
