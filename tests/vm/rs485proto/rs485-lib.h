@@ -321,7 +321,9 @@ static inline void slave_answer(struct slave *s, const uint8_t *req)
 		/* fall through */
 	case I_DELAY:
 		if (instr == I_DELAY) {
-			for (int ms = 0; s->hold && ms < 10000; ms++)
+			double until = now_s() + 10;
+
+			while (s->hold && now_s() < until)
 				usleep(1000);
 			usleep(s->delay_us);
 		}
