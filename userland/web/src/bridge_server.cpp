@@ -166,7 +166,8 @@ struct BridgeServer::Impl {
       con->set_body(json_reply({{"user", user ? json(*user) : json(nullptr)},
                                 {"view_requires_login", opt.view_requires_login},
                                 {"max_speed_mps", opt.drive_limits.max_speed_mps},
-                                {"max_steering_rad", opt.drive_limits.max_steering_rad}}));
+                                {"max_steering_rad", opt.drive_limits.max_steering_rad},
+                                {"drive_timeout_ms", opt.drive_timeout_ms}}));
       con->set_status(websocketpp::http::status_code::ok);
       return;
     }
@@ -316,7 +317,7 @@ struct BridgeServer::Impl {
   void stop_robot(const Operator& who, const std::string& why) {
     ControlRequest stop;
     stop.kind = ControlRequest::Kind::stop;
-    log("control: the bridge stops the robot: " + why);
+    stop.cause = why;
     if (control) control(stop, who, true);
   }
 

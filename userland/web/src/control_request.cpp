@@ -129,7 +129,9 @@ std::string describe_request(const ControlRequest& r) {
   switch (r.kind) {
     case K::take: return r.force ? "take control (over another operator)" : "take control";
     case K::release: return "release control";
-    case K::stop: return "stop";
+    // The bridge's own stops say why: an operator reading the error list
+    // must tell a take-over from a page that went away.
+    case K::stop: return r.cause.empty() ? "stop" : "stop by the bridge: " + r.cause;
     case K::drive: {
       char b[96];
       std::snprintf(b, sizeof b, "drive %.2f m/s steering %.3f rad", r.speed_mps, r.steering_rad);

@@ -3,7 +3,8 @@
 // joystick and the arrow keys under the dead-man rule, module states, power,
 // homing. Every request goes over the page's WebSocket to advee-web, which
 // checks the session and the lease again (docs/web-dashboard.md "Control").
-// Loaded before dashboard.js, which calls control.onLease/onReply/onSocket.
+// Loaded before dashboard.js, which calls control.onLease/onReply/onSocket
+// and gives control.onNewSession the page's reconnect.
 "use strict";
 
 const control = (() => {
@@ -18,6 +19,7 @@ const control = (() => {
     keys: new Set(),     // arrow keys held
     timer: null,
     last: null,          // last drive request sent
+    newSession: null,    // dashboard.js: replace the socket after login/logout
   };
   const $ = (id) => document.getElementById(id);
 
@@ -154,15 +156,15 @@ const control = (() => {
       $("login-password").value = "";
       if (!ok) return status(j.error || "login failed", true);
       status("logged in as " + j.user);
+      if (c.newSession) c.newSession();  // the new socket carries the session cookie
       await refreshSession();
-      if (c.ws) c.ws.close();  // the new socket carries the session cookie
     });
     $("logout").addEventListener("click", async () => {
       stop();
       await post("logout");
+      if (c.newSession) c.newSession();
       await refreshSession();
       status("logged out");
-      if (c.ws) c.ws.close();
     });
   }
 
@@ -219,6 +221,7 @@ const control = (() => {
   refreshSession();
 
   return {
+    onNewSession(reconnect) { c.newSession = reconnect; },
     onSocket(ws) {
       if (!ws) { c.mine = false; c.holder = null; stop(false); }
       c.ws = ws;

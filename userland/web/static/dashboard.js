@@ -222,21 +222,41 @@ function onMessage(ev) {
 
 // ---- connection -----------------------------------------------------------
 
+let socket = null;  // the page's current WebSocket; a replaced one is ignored
+
 function connect() {
   const ws = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/`);
+  socket = ws;
   ws.onopen = () => {
+    if (ws !== socket) return;
     st.connected = true;
     control.onSocket(ws);
     updateHeader();
   };
-  ws.onmessage = onMessage;
+  ws.onmessage = (ev) => { if (ws === socket) onMessage(ev); };
   ws.onclose = () => {
-    st.connected = false;
-    control.onSocket(null);
-    updateHeader();
+    if (ws !== socket) return;
+    disconnected();
     setTimeout(connect, 1000);
   };
 }
+
+function disconnected() {
+  st.connected = false;
+  control.onSocket(null);
+  updateHeader();
+}
+
+// A new session (login, logout): the old socket still speaks for the old
+// one, so the page shows itself disconnected at once and opens a new socket
+// (with the new cookie) without the retry's wait.
+control.onNewSession(() => {
+  const old = socket;
+  socket = null;
+  disconnected();
+  if (old) old.close();
+  connect();
+});
 
 // ---- drawing --------------------------------------------------------------
 

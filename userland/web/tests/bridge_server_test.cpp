@@ -368,6 +368,7 @@ TEST_F(Bridge, ControlNeedsALoginAndTheLeaseThenDisconnectStops) {
   const auto c = wait_calls(4);
   ASSERT_EQ(c.size(), 4u);
   EXPECT_EQ(c[3].request.kind, ControlRequest::Kind::stop);
+  EXPECT_EQ(c[3].request.cause, "the operator's page disconnected");
   EXPECT_TRUE(c[3].audit);
   EXPECT_NE(read_until_prefix(viewer, R"({"channel":"WEB_LEASE")").find(R"("holder":null)"), std::string::npos);
 }
@@ -385,6 +386,7 @@ TEST_F(Bridge, LogoutEndsControl) {
   const auto c = calls();
   ASSERT_EQ(c.size(), 2u);  // take, and the stop of the logout
   EXPECT_EQ(c[1].request.kind, ControlRequest::Kind::stop);
+  EXPECT_EQ(c[1].request.cause, "logged out");
 }
 
 TEST_F(Bridge, ASecondOperatorTakesOverExplicitlyAndTheFirstIsTold) {
@@ -402,6 +404,8 @@ TEST_F(Bridge, ASecondOperatorTakesOverExplicitlyAndTheFirstIsTold) {
   ASSERT_EQ(c.size(), 4u);  // take, drive, the stop for alice, bob's take
   EXPECT_EQ(c[2].request.kind, ControlRequest::Kind::stop);
   EXPECT_EQ(c[2].who.name, "alice");
+  EXPECT_EQ(c[2].request.cause, "taken over by bob");
+  EXPECT_EQ(describe_request(c[2].request), "stop by the bridge: taken over by bob");
   EXPECT_EQ(c[3].who.name, "bob");
 }
 
@@ -450,6 +454,7 @@ TEST_F(BridgeDriveTimeout, DriveCommandsThatStopComingStopTheRobot) {
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_EQ(c.size(), 3u);
   EXPECT_EQ(c[2].request.kind, ControlRequest::Kind::stop);
+  EXPECT_EQ(c[2].request.cause, "no drive command for 200 ms");
   EXPECT_GE(ms, 200);
   std::printf("stop after the last drive command: %.0f ms (timeout 200 ms, flush every 20 ms)\n", ms);
 }

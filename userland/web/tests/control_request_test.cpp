@@ -87,6 +87,8 @@ TEST(ControlRequest, TakeReleaseStopHoming) {
   refused(R"({"type":"take","force":1})");
   EXPECT_EQ(accepted(R"({"type":"release"})").kind, ControlRequest::Kind::release);
   EXPECT_EQ(accepted(R"({"type":"stop"})").kind, ControlRequest::Kind::stop);
+  // Only the bridge names a cause: a page's stop is an operator's.
+  EXPECT_EQ(describe_request(accepted(R"({"type":"stop"})")), "stop");
   EXPECT_EQ(accepted(R"({"type":"homing","axis":"steering"})").kind, ControlRequest::Kind::homing);
   refused(R"({"type":"homing","axis":"propulsion"})");
 }

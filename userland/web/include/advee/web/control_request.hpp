@@ -40,6 +40,7 @@ struct ControlRequest {
   PowerAction power = PowerAction::output;
   std::int8_t output = 0;       // power output: PSC1 output 0..kMaxPowerOutput
   bool on = false;              // power output
+  std::string cause;            // stop sent by the bridge itself: why (take-over, ...)
 };
 
 inline constexpr int kMaxPowerOutput = 15;
