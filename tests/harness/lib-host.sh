@@ -193,13 +193,20 @@ system_suites() {
 # kernel (docs/kernels.md): those whose settings say rt_lane=1 (the DIO
 # irqchip, ts-can1's shared interrupt) on 6.12-rt, the others on 6.12, so
 # that each kernel suite runs on one of the two in every run.
+# A suite runs on 6.12 with some of its programs also on 6.12-rt when its
+# settings say rt_programs=PROG... (tsuart: traffic, issue 19 item 4).
 newer_kernel_suites() {
-	local suite
+	local suite settings prog
 	for suite in $(kernel_suites); do
-		if grep -qx 'rt_lane=1' "$TOP/tests/vm/$suite/settings"; then
+		settings=$TOP/tests/vm/$suite/settings
+		if grep -qx 'rt_lane=1' "$settings"; then
 			[ "$1" = 6.12-rt ] && echo "$suite"
 		else
 			[ "$1" = 6.12 ] && echo "$suite"
+			[ "$1" = 6.12-rt ] || continue
+			for prog in $(sed -n 's/^rt_programs=//p' "$settings"); do
+				echo "$suite/$prog"
+			done
 		fi
 	done
 	return 0

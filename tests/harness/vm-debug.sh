@@ -60,6 +60,8 @@ if [ $explicit = 0 ]; then
 fi
 
 export VMTEST_SLOWDOWN=${VMTEST_SLOWDOWN:-4}
+# The PREEMPT_RT kernel with one CPU, like the RT lane (vm-x86.sh says why).
+[ "$series" = 6.12-rt ] && export VMTEST_SMP=${VMTEST_SMP:-1}
 export VMTEST_APPEND="pci=noacpi kasan_multi_shot${VMTEST_APPEND:+ $VMTEST_APPEND}"
 exec "$TOP/tests/harness/vm-x86.sh" --kernel "$entry/bzImage" --kver "$kver" \
 	--modroot "$entry/modroot" --modules "$BUILD/kmod/debug-$series/modules.list" --lane debug "${suites[@]}" "$@"

@@ -141,7 +141,7 @@ void sim_debugfs_init(struct ts7800_sim *sim)
 {
 	struct dentry *dir;
 	unsigned int n;
-	char name[8];
+	char name[16];	/* "uart" and any unsigned int (W=1: -Wformat-truncation) */
 
 	sim->debugfs = debugfs_create_dir(SIM_DEBUGFS_DIR, NULL);
 	debugfs_create_file_unsafe("irq_hold", 0600, sim->debugfs, sim, &irq_hold_fops);

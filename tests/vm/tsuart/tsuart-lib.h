@@ -8,10 +8,12 @@
 #ifndef TSUART_LIB_H
 #define TSUART_LIB_H
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <pthread.h>
 #include <poll.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <termios.h>
@@ -95,6 +97,41 @@ static inline int tty_open(int port, speed_t speed, tcflag_t cflag_extra, int fl
  * Read n words, giving up after timeout_s without progress; returns the
  * number read, *t_last the time the last ones arrived.
  */
+/*
+ * The kernel thread "irq/N-..." serving the tty's interrupt line when its
+ * handler is threaded (PREEMPT_RT, threadirqs): its pid, else 0.
+ */
+static inline int tty_irq_thread(int fd)
+{
+	char path[300], comm[32], want[32];
+	struct serial_struct ser;
+	struct dirent *d;
+	DIR *dir;
+	int pid = 0;
+	FILE *f;
+
+	memset(&ser, 0, sizeof(ser));
+	if (ioctl(fd, TIOCGSERIAL, &ser) < 0 || ser.irq <= 0)
+		return 0;
+	snprintf(want, sizeof(want), "irq/%d-", ser.irq);
+	dir = opendir("/proc");
+	if (!dir)
+		return 0;
+	while (!pid && (d = readdir(dir))) {
+		if (d->d_name[0] < '1' || d->d_name[0] > '9')
+			continue;
+		snprintf(path, sizeof(path), "/proc/%s/comm", d->d_name);
+		f = fopen(path, "r");
+		if (!f)
+			continue;
+		if (fgets(comm, sizeof(comm), f) && !strncmp(comm, want, strlen(want)))
+			pid = atoi(d->d_name);
+		fclose(f);
+	}
+	closedir(dir);
+	return pid;
+}
+
 static inline size_t wire_read_n(int wfd, uint16_t *w, size_t n, double timeout_s, double *t_last)
 {
 	double end = now_s() + timeout_s;
