@@ -137,7 +137,8 @@ int main(void)
 	ret = xfer(fd, &x, SLAVE_ADDR, I_EVENT_FIRST, 0, data, 9, LONG_US, 0);
 	tap_ok(ret == 0 && x.status == N_RS485_OK && x.resp.flags == N_RS485_RESP_ACK &&
 	       x.resp.len == 9 && !memcmp(x.resp.data, data, 9),
-	       "event frame before the response: the transaction gets the response");
+	       "event frame before the response: the transaction gets the response (ret %d, status %u, attempts %u, %u bytes)",
+	       ret, x.status, x.attempts, (unsigned int)x.resp.len);
 	ev[0] = SLAVE_ADDR;
 	ev[1] = I_EVENT_FIRST;
 	ev[2] = N_RS485_RESP_EVENT;
