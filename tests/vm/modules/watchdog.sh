@@ -12,11 +12,15 @@ tap_plan 12
 lcm_net_up || { tap_diag "cannot set up loopback multicast"; exit 1; }
 board_up || { tap_diag "cannot bring up the simulated board"; exit 1; }
 aux_config "$VMTEST_SCRATCH/driver_aux.yaml" 1
+# A run this long counts as stable (the next restart is immediate). Well
+# above what a failing start of driver_aux takes: 2.1 s under load once,
+# counted as stable at 2 s (CI of cadd873: "got 0 0 500 1000").
+STABLE_S=5
 cat >"$VMTEST_SCRATCH/watchdog.yaml" <<EOC
 module: {name: watchdog, print_severity: notice, log_root: $VMTEST_SCRATCH/log}
 supervisor:
   term_grace_s: 1
-  backoff: {initial_s: 0.5, max_s: 4, factor: 2, stable_s: 2}
+  backoff: {initial_s: 0.5, max_s: 4, factor: 2, stable_s: $STABLE_S}
 modules:
   - name: driver_aux
     path: $DRIVER_AUX
@@ -87,6 +91,8 @@ n=$(echo_msgs 0 3 CM_DATA_STATE | grep -c 'module=driver_aux')
 tap_is "and nothing announces driver_aux for 3 s" "$n" 0
 "$LCMCTL" state driver_aux RUN
 p4=$(state_pid driver_aux RUN 10)
+uptime_cs
+p4_seen=$UPTIME_CS
 tap_ok "RUN starts driver_aux again" test -n "$p4" -a "$p4" != "$p3"
 
 # The chip goes away: driver_aux ends with 0x21 at each start, restarts back off.
@@ -94,8 +100,16 @@ PH=$VMTEST_SCRATCH/phases.out
 bg "$LCMCTL" echo --timeout 60 CM_DATA_MODULES >"$PH"
 E=$LAST_BG
 wait_lcm_listening "$E" 20
+# p4 runs longer than STABLE_S before it is killed: it started before the
+# test saw it (p4_seen), so that much time since then is enough.
+longer_ago_than() {	# longer_ago_than UPTIME_CS SECONDS
+	uptime_cs
+	[ $((UPTIME_CS - $1)) -gt $(($2 * 100)) ]
+}
 modprobe -r max6615
-kill "$p4"		# restarted at once; from then on every start fails
+wait_until $((STABLE_S + 10)) longer_ago_than "$p4_seen" "$STABLE_S" ||
+	tap_diag "no stable run of driver_aux (pid $p4) before the kill"
+kill "$p4"		# a stable run: restarted at once; from then on every start fails
 wait_lines "$PH" 'target=driver_aux phase=TERMINATED' 4 30 >/dev/null
 kill "$E"
 phases=$(grep 'target=driver_aux phase=TERMINATED' "$PH")
