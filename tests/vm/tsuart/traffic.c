@@ -164,7 +164,7 @@ static void rx_test(const struct config *c, int port, const struct rate *r, int 
 	size_t n = chars_for(c, r->baud, bits), i, flagged = 0;
 	struct ts7800_sim_wire_stats st;
 	struct collector col;
-	char what[112];
+	char what[96];
 	int fd, wfd, ok, threaded;
 	double t0;
 

@@ -94,10 +94,6 @@ static inline int tty_open(int port, speed_t speed, tcflag_t cflag_extra, int fl
 }
 
 /*
- * Read n words, giving up after timeout_s without progress; returns the
- * number read, *t_last the time the last ones arrived.
- */
-/*
  * The kernel thread "irq/N-..." serving the tty's interrupt line when its
  * handler is threaded (PREEMPT_RT, threadirqs): its pid, else 0.
  */
@@ -132,6 +128,10 @@ static inline int tty_irq_thread(int fd)
 	return pid;
 }
 
+/*
+ * Read n words, giving up after timeout_s without progress; returns the
+ * number read, *t_last the time the last ones arrived.
+ */
 static inline size_t wire_read_n(int wfd, uint16_t *w, size_t n, double timeout_s, double *t_last)
 {
 	double end = now_s() + timeout_s;
