@@ -525,7 +525,9 @@ struct BridgeServer::ImplT final : BridgeServer::Impl {
   void on_fail(Hdl h) {
     std::error_code ec;
     auto con = server.get_con_from_hdl(h, ec);
-    if (!ec && !stopping) log("connection failed: " + con->get_ec().message());
+    // With TLS: also every plain-HTTP request and every client that does not
+    // trust the certificate ("TLS handshake failed").
+    if (!ec && !stopping) log("connection from " + peer_address(con) + " failed: " + con->get_ec().message());
     forget(h);
   }
 
