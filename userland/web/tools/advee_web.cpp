@@ -156,11 +156,12 @@ int main(int argc, char** argv) {
   app.add_flag("--secure-cookie", secure_cookie, "the page is reached over https (a TLS proxy in front): "
                                                  "the session cookie gets Secure (implied by --tls-cert)");
   auto* cert_opt = app.add_option("--tls-cert", tls_cert, "PEM certificate (chain, the server's first): serve "
-                                                          "HTTPS and WSS instead of HTTP and WS; needs --tls-key");
+                                                          "HTTPS and WSS instead of HTTP and WS; the session "
+                                                          "cookie gets Secure, only the https Origin is the page's");
   auto* key_opt = app.add_option("--tls-key", tls_key, "the certificate's PEM private key, unencrypted "
-                                                       "(mode 0640 root:advee); needs --tls-cert");
-  cert_opt->needs(key_opt);
-  key_opt->needs(cert_opt);
+                                                       "(mode 0640 root:advee); both read once at start");
+  cert_opt->type_name("FILE")->needs(key_opt);
+  key_opt->type_name("FILE")->needs(cert_opt);
   app.add_option("--operators", operators, "the operators' password file (NAME:crypto_pwhash "
                                            "hash, mode 0640 root:advee; advee-web passwd sets it)")
       ->capture_default_str();
