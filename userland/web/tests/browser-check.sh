@@ -239,9 +239,12 @@ if [ -d "$NODE_TESTS/node_modules/puppeteer-core" ]; then
 fi
 # Plain HTTP to the TLS port gets no HTTP answer (at most a TLS alert), and
 # the connection is closed.
-(exec 3<>"/dev/tcp/127.0.0.1/$port" && printf 'GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n' >&3 &&
+# The server may close before the request is all written: no SIGPIPE then
+# (a run ended with 141), the reply is read all the same.
+(trap '' PIPE; exec 3<>"/dev/tcp/127.0.0.1/$port" || exit 2
+	printf 'GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n' >&3 2>/dev/null
 	timeout 5 cat <&3 >"$TLS/plain-reply" 2>/dev/null)
-rc=$?	# 0: closed by the server, 1: reset, 124: left open
+rc=$?	# 0: closed by the server, 1: reset, 2: no connection, 124: left open
 if [ "$rc" -le 1 ] && [ -f "$TLS/plain-reply" ] && ! grep -q "HTTP/" "$TLS/plain-reply"; then
 	row "https: plain HTTP to the TLS port gets no HTTP answer and is closed" ok
 else
