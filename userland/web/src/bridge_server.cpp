@@ -72,8 +72,8 @@ void check_readable(const std::filesystem::path& file, const char* what) {
 // instead of failing every handshake later. TLS 1.2 at least (1.0 and 1.1
 // are deprecated, RFC 8996), no compression (CRIME), the server's cipher
 // order, TLS 1.2 ciphers only with forward secrecy and AEAD (TLS 1.3's are
-// all such); no session tickets, so no ticket key lives for the process's
-// whole life.
+// all such); no stateless session tickets, so no ticket key lives for the
+// process's whole life (resumption uses the in-memory session cache).
 std::shared_ptr<asio::ssl::context> make_tls_context(const std::filesystem::path& cert,
                                                      const std::filesystem::path& key) {
   check_readable(cert, "TLS certificate");
