@@ -4,7 +4,8 @@
 // certificate for the run and starts it). Chromium trusts that one
 // certificate only: --ignore-certificate-errors-spki-list with its public
 // key's hash, not --ignore-certificate-errors. One login + drive with the
-// keys, what reaches LCM read by advee-stack-listen.
+// keys, what reaches LCM read by advee-stack-listen; then a Chromium without
+// the hash must be refused the page.
 //   node tls-test.mjs   (environment: WEB_URL (https://), SPKI, LISTEN,
 //                        CHROMIUM, OP1, PW1)
 // Output as dashboard-test.mjs: "ROW<TAB>ok|fail<TAB>name<TAB>note",
@@ -110,8 +111,24 @@ async function main() {
   }
 }
 
+// Without the certificate's key hash the same Chromium refuses the page: the
+// trust above is that one certificate, and the server's is really checked.
+async function untrusted() {
+  const browser = await puppeteer.launch({executablePath: env("CHROMIUM"), headless: true,
+                                          args: ["--no-sandbox", "--disable-gpu"]});
+  try {
+    const page = await browser.newPage();
+    const err = await page.goto(URL0, {waitUntil: "load", timeout: 10000}).then(() => "loaded", (e) => String(e));
+    row(/ERR_CERT_/.test(err), "https: a browser that does not trust the certificate gets no page",
+        err.split("\n")[0]);
+  } finally {
+    await browser.close();
+  }
+}
+
 try {
   await main();
+  await untrusted();
 } catch (e) {
   row(false, "https browser test ran to the end", String(e.stack || e).split("\n").slice(0, 3).join(" | "));
 }
