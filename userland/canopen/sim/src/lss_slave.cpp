@@ -164,7 +164,10 @@ void LssSimNode::start() {
   lss_.reset_communication();
   drive_.reset();
   const std::uint8_t id = lss_.active_node_id();
-  if (id == kLssUnconfigured) return;
+  if (id == kLssUnconfigured) {
+    if (on_start_) on_start_(id);
+    return;
+  }
   DriveSimConfig c = cfg_;
   c.node = id;
   drive_ = std::make_unique<SimulatedDrive>(c, send_, now_);

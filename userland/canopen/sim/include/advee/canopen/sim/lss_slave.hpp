@@ -94,7 +94,9 @@ class LssSimNode {
   LssSlave& lss() { return lss_; }
   // Null while the node has no node-ID.
   SimulatedDrive* drive() { return drive_.get(); }
-  // Called after each (re)start of the drive with its node-ID (tools print it).
+  // Called after each reset communication with the node-ID it brought:
+  // the new drive's, or kLssUnconfigured when the drive is gone (tools print
+  // it, and must take drive() anew).
   void set_on_start(std::function<void(std::uint8_t)> cb) { on_start_ = std::move(cb); }
 
  private:
