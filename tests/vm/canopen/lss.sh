@@ -15,7 +15,7 @@ start_sim b --unconfigured --serial 0x102 -p epos || exit 1
 # Two processes answer each fastscan step: the settle time covers the
 # second one's answer under TCG.
 ctl() { "$BIN/canopenctl" -i "$IF" "$@"; }
-lss() { ctl lss --answer-ms 300 --settle-ms 60 "$@"; }
+lss() { ctl lss --answer-ms 300 --settle-ms 80 "$@"; }
 id() { echo "vendor 0x000000FB product 0x64200000 revision 0x00010000 serial 0x$1${2:+ node-ID $2}"; }
 
 tap_is "identify counts the two nodes without node-ID" "$(lss identify)" "2 nodes without node-ID answered"

@@ -381,6 +381,11 @@ namespace {
 // At most this many slaves per scan: a faulty slave that answers every
 // fastscan step must not keep the scan going for ever.
 constexpr std::size_t kMaxScanned = 127;
+// Fastscans that lost their slave are started again this often per scan:
+// an answer that came after the settle time counts for the next step and
+// sets a wrong bit, which the word's confirm then finds (on vcan, where the
+// answers of several slaves are separate frames, under load).
+constexpr int kFastscanRetries = 2;
 
 struct ScanState {
   LssMaster* lss = nullptr;
@@ -388,6 +393,7 @@ struct ScanState {
   bool store = false;
   std::vector<LssFound> found;
   LssScanCallback done;
+  int retries = kFastscanRetries;
 };
 
 void scan_end(const std::shared_ptr<ScanState>& st, LssResult r) {
@@ -398,6 +404,14 @@ void scan_next(const std::shared_ptr<ScanState>& st) {
   if (st->found.size() >= kMaxScanned || (st->next_id && *st->next_id > 127)) return scan_end(st, {});
   st->lss->fastscan([st](const LssFastscanResult& fr) {
     if (fr.result.error == LssError::kNotFound) return scan_end(st, {});
+    if (fr.result.error == LssError::kLost && st->retries > 0) {
+      --st->retries;
+      // While numbering, a slave that did reach configuration state (its
+      // last answer missed) goes back to waiting so that it cannot share
+      // the next node-ID; while listing, the slaves found stay put.
+      if (!st->next_id) return scan_next(st);
+      return st->lss->switch_global(LssMode::kWaiting, [st](const LssResult&) { scan_next(st); });
+    }
     if (!fr.result.ok()) return scan_end(st, fr.result);
     st->found.push_back({fr.address, kLssUnconfigured});
     if (!st->next_id) return scan_next(st);

@@ -402,6 +402,52 @@ TEST_F(LssTest, ScanStopsAtTheFirstErrorWithEverySlaveBackInWaiting) {
   EXPECT_EQ(n.lss().stored_node_id(), kLssUnconfigured);
 }
 
+// A stray answer in the step for bit 0 of the vendor-ID (0xFB: a 1) makes
+// the master take a 0 there; the word's confirm fails, and the scan starts
+// the fastscan again, which finds the slave.
+TEST_F(LssTest, ScanStartsAFastscanAgainWhenItLostItsSlave) {
+  add_node(5, kLssUnconfigured);
+  int strays = 1;
+  std::size_t port = 0;
+  port = bus.attach([&](const CanFrame& f) {
+    if (f.id == cob::kLssMaster && f.data[0] == lss_cs::kFastscan && f.data[5] == 0 && f.data[6] == 0 &&
+        f.data[7] == 0 && strays > 0) {
+      --strays;
+      bus.sender(port)(make_frame(cob::kLssSlave, {lss_cs::kIdentifySlave, 0, 0, 0, 0, 0, 0, 0}));
+    }
+  });
+  std::optional<LssResult> result;
+  std::vector<LssFound> found;
+  lss_scan(lss, 40, false, [&](const std::vector<LssFound>& f, const LssResult& r) {
+    found = f;
+    result = r;
+  });
+  ASSERT_TRUE(run_until([&] { return result.has_value(); }, 600s));
+  EXPECT_TRUE(result->ok()) << describe(*result);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].address, epos(5));
+  EXPECT_EQ(found[0].node_id, 40);
+  EXPECT_EQ(strays, 0) << "the stray answer came";
+}
+
+// Without retries left, kLost is the scan's result.
+TEST_F(LssTest, ScanGivesUpAfterTwoRetries) {
+  add_node(5, kLssUnconfigured);
+  std::size_t port = 0;
+  port = bus.attach([&](const CanFrame& f) {
+    if (f.id == cob::kLssMaster && f.data[0] == lss_cs::kFastscan && f.data[5] == 0 && f.data[6] == 0 &&
+        f.data[7] == 0)
+      bus.sender(port)(make_frame(cob::kLssSlave, {lss_cs::kIdentifySlave, 0, 0, 0, 0, 0, 0, 0}));
+  });
+  std::optional<LssResult> result;
+  lss_scan(lss, 40, false, [&](const std::vector<LssFound>&, const LssResult& r) { result = r; });
+  ASSERT_TRUE(run_until([&] { return result.has_value(); }, 600s));
+  EXPECT_EQ(result->error, LssError::kLost);
+  std::size_t resets = 0;
+  for (const auto& s : sent_lss()) resets += s == "7E5#5100000000800000";
+  EXPECT_EQ(resets, 3u);
+}
+
 TEST_F(LssTest, CancelAllEndsTheActiveAndQueuedServices) {
   std::vector<LssError> errors;
   lss.inquire(LssInquiry::kVendor, [&](const LssResult& r) { errors.push_back(r.error); });

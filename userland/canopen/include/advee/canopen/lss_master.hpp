@@ -182,7 +182,9 @@ using LssScanCallback = std::function<void(const std::vector<LssFound>&, const L
 // node-ID, store if `store`, then switch global to waiting, where it boots
 // with it), and the scan stops when node-ID 127 is given. Every slave is
 // back in waiting state when done() is called, after an error too; the
-// result is the first error (a refused store, a slave lost half-way).
+// result is the first error (a refused store). A fastscan that lost its
+// slave half-way (kLost: usually an answer that came after the settle time)
+// is started again, twice at most per scan, before kLost is the result.
 // The LssMaster must outlive the scan. An invalid first_node_id ends it at
 // once (done() inside the call) with kInvalidArgument.
 void lss_scan(LssMaster& lss, std::optional<std::uint8_t> first_node_id, bool store, LssScanCallback done);
