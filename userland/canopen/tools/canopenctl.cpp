@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 // canopenctl: command-line CANopen master tool on SocketCAN. NMT commands,
 // typed SDO read/write (block transfer too), a scan of the nodes that answer
-// with their identity, LSS (CiA 305: fastscan, node-ID by identity), PDO dump and remap, CiA 402 status and power control,
-// live traffic and heartbeat monitors. Every argument is checked before the
+// with their identity, LSS (CiA 305: fastscan, node-ID by identity), PDO
+// dump and remap, CiA 402 status and power control, live traffic and
+// heartbeat monitors. Every argument is checked before the
 // CAN socket is opened. Exit status (advee/cli.hpp) 0 on success and after --help and
 // --version, 1 on a CANopen or I/O error (message on stderr), 2 on usage
 // errors.
