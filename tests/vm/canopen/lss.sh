@@ -2,10 +2,10 @@
 # SPDX-License-Identifier: GPL-2.0
 # canopenctl lss (CiA 305) against two simulated EPOS drives on vcan that
 # start without node-ID (canopen-sim-drive --unconfigured): identify, a
-# fastscan that only lists them, a fastscan that numbers them (they boot and
-# answer SDO at their new node-IDs), set-id by identity on a configured
-# node (new node-ID after NMT reset communication), set-id refused when two
-# nodes would take it.
+# fastscan that only lists them (vendor-ID and product code given), a
+# fastscan that numbers them (they boot and answer SDO at their new
+# node-IDs), set-id by identity on a configured node (new node-ID after NMT
+# reset communication), set-id refused when two nodes would take it.
 . "$(dirname "$0")/common.inc"
 canopen_setup
 tap_plan 9
@@ -19,7 +19,7 @@ lss() { ctl lss --answer-ms 300 --settle-ms 80 "$@"; }
 id() { echo "vendor 0x000000FB product 0x64200000 revision 0x00010000 serial 0x$1${2:+ node-ID $2}"; }
 
 tap_is "identify counts the two nodes without node-ID" "$(lss identify)" "2 nodes without node-ID answered"
-tap_is "scan lists both, lowest address first" "$(lss scan)" "$(id 00000101; id 00000102)"
+tap_is "scan lists both, lowest address first" "$(lss scan --vendor FB --product 64200000)" "$(id 00000101; id 00000102)"
 tap_is "scan --assign 20 numbers them" "$(lss scan --assign 20 --store)" "$(id 00000101 20; id 00000102 21)"
 tap_ok "the first booted as node 20" wait_line "$SCR/a.log" "node 20 nmt pre-operational" 5
 tap_is "node 21 answers SDO with its serial number" "$(ctl read 21 1018:4 u32)" "258 (0x102)"

@@ -393,6 +393,7 @@ struct ScanState {
   bool store = false;
   std::vector<LssFound> found;
   LssScanCallback done;
+  std::array<std::optional<std::uint32_t>, 4> known;
   int retries = kFastscanRetries;
 };
 
@@ -431,16 +432,18 @@ void scan_next(const std::shared_ptr<ScanState>& st) {
         to_waiting();
       });
     });
-  });
+  }, st->known);
 }
 }  // namespace
 
-void lss_scan(LssMaster& lss, std::optional<std::uint8_t> first_node_id, bool store, LssScanCallback done) {
+void lss_scan(LssMaster& lss, std::optional<std::uint8_t> first_node_id, bool store, LssScanCallback done,
+              std::array<std::optional<std::uint32_t>, 4> known) {
   auto st = std::make_shared<ScanState>();
   st->lss = &lss;
   st->next_id = first_node_id;
   st->store = store;
   st->done = std::move(done);
+  st->known = known;
   if (first_node_id && !is_valid_node_id(*first_node_id)) {
     LssResult r;
     r.error = LssError::kInvalidArgument;

@@ -23,6 +23,18 @@ TEST(CanopenctlLssTest, CommandsAreChecked) {
   EXPECT_EQ(c.assign, 10);
   EXPECT_TRUE(c.store);
   EXPECT_EQ(c.config.timeout, std::chrono::milliseconds(100));
+  a.vendor = "0xFB";
+  a.product = "64200000";
+  c = check_lss("lss scan", a);
+  EXPECT_EQ(c.known[0], 0xFBu);
+  EXPECT_EQ(c.known[1], 0x64200000u);
+  EXPECT_FALSE(c.known[2]);
+  a.vendor = "FBX";
+  EXPECT_THROW(check_lss("lss scan", a), UsageError);
+  a.vendor.clear();
+  a.product = "123456789";
+  EXPECT_THROW(check_lss("lss scan", a), UsageError);
+  a.product.clear();
   a.assign.clear();
   EXPECT_THROW(check_lss("lss scan", a), UsageError) << "--store without --assign";
   a = {};

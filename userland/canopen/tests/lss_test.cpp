@@ -36,6 +36,9 @@ class LssTest : public testing::Test {
     DriveSimConfig cfg;
     cfg.profile = DriveProfile::kEpos;
     cfg.serial = serial;
+    return add_node(cfg, node_id);
+  }
+  LssSimNode& add_node(const DriveSimConfig& cfg, std::uint8_t node_id) {
     const std::size_t i = nodes.size();
     ports.push_back(bus.attach([this, i](const CanFrame& f) { nodes[i]->handle(f); }));
     nodes.push_back(std::make_unique<LssSimNode>(cfg, node_id, bus.sender(ports.back()), clock.fn()));
@@ -380,6 +383,32 @@ TEST_F(LssTest, ScanWithoutAssignmentFindsAllAndChangesNothing) {
   for (auto& n : nodes) EXPECT_EQ(n->lss().mode(), LssMode::kWaiting);
   EXPECT_EQ(nodes[0]->drive(), nullptr);
   EXPECT_EQ(nodes[1]->drive(), nullptr);
+}
+
+// An IclA (vendor 0x5A) without node-ID beside two EPOS: a scan for the
+// EPOS vendor-ID numbers the EPOS only.
+TEST_F(LssTest, ScanWithAKnownVendorFindsOnlyItsNodes) {
+  add_node(7, kLssUnconfigured);
+  DriveSimConfig icla;
+  icla.profile = DriveProfile::kIcla;
+  icla.serial = 1;  // the lowest address of the three
+  add_node(icla, kLssUnconfigured);
+  add_node(8, kLssUnconfigured);
+  std::optional<std::vector<LssFound>> found;
+  lss_scan(
+      lss, 50, false,
+      [&](const std::vector<LssFound>& f, const LssResult& r) {
+        EXPECT_TRUE(r.ok()) << describe(r);
+        found = f;
+      },
+      {0xFBu, std::nullopt, std::nullopt, std::nullopt});
+  ASSERT_TRUE(run_until([&] { return found.has_value(); }, 600s));
+  ASSERT_EQ(found->size(), 2u);
+  EXPECT_EQ((*found)[0].address, epos(7));
+  EXPECT_EQ((*found)[1].address, epos(8));
+  EXPECT_EQ(nodes[1]->lss().active_node_id(), kLssUnconfigured) << "the IclA keeps no node-ID";
+  EXPECT_EQ(nodes[0]->lss().active_node_id(), 50);
+  EXPECT_EQ(nodes[2]->lss().active_node_id(), 51);
 }
 
 TEST_F(LssTest, ScanStopsAtTheFirstErrorWithEverySlaveBackInWaiting) {

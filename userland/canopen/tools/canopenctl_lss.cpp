@@ -9,11 +9,12 @@
 namespace advee::canopen::ctl {
 
 namespace {
-std::uint32_t parse_word(const std::string& s, const std::string& whole) {
+std::uint32_t parse_word(const std::string& s, const std::string& whole, const char* what = nullptr) {
   std::string digits = s;
   if (digits.size() > 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) digits = digits.substr(2);
   if (digits.empty() || digits.size() > 8 || digits.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
-    throw UsageError("identity '" + whole + "': expected VENDOR:PRODUCT:REVISION:SERIAL, 32-bit hex numbers");
+    throw UsageError(what ? std::string(what) + " '" + whole + "': expected a 32-bit hex number"
+                          : "identity '" + whole + "': expected VENDOR:PRODUCT:REVISION:SERIAL, 32-bit hex numbers");
   return static_cast<std::uint32_t>(std::strtoul(digits.c_str(), nullptr, 16));
 }
 }  // namespace
@@ -41,6 +42,8 @@ LssCommand check_lss(const std::string& name, const LssArgs& a) {
   if (name == "lss scan") {
     if (!a.assign.empty()) c.assign = parse_node(a.assign);
     if (c.store && !c.assign) throw UsageError("lss scan: --store needs --assign");
+    if (!a.vendor.empty()) c.known[0] = parse_word(a.vendor, a.vendor, "--vendor");
+    if (!a.product.empty()) c.known[1] = parse_word(a.product, a.product, "--product");
   } else if (name == "lss set-id") {
     c.node = parse_node(a.node);
     if (!a.identity.empty()) c.identity = parse_lss_address(a.identity);

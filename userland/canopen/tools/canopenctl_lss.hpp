@@ -4,6 +4,7 @@
 // command run on a master (canopenctl_lss_run.cpp, part of the tool).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -23,6 +24,7 @@ struct LssArgs {
   int answer_ms = 100;
   int settle_ms = 10;
   std::string assign;    // scan --assign FIRST
+  std::string vendor, product;  // scan --vendor, --product
   std::string node;      // set-id NODE
   std::string identity;  // set-id --identity
   bool store = false;
@@ -32,6 +34,7 @@ struct LssCommand {
   std::string name;  // "lss scan", "lss set-id", "lss identify"
   LssMasterConfig config;
   std::optional<std::uint8_t> assign;
+  std::array<std::optional<std::uint32_t>, 4> known;  // scan: vendor, product
   std::uint8_t node = 0;
   std::optional<LssAddress> identity;
   bool store = false;

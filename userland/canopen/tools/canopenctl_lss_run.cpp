@@ -23,6 +23,9 @@ void describe_lss(CLI::App& app, LssArgs& a) {
               "(FIRST, FIRST+1, ...), with which it boots");
   scan->add_option("--assign", a.assign, "first node-ID to give (1..127)")->type_name("FIRST");
   scan->add_flag("--store", a.store, "have each node store its new node-ID (with --assign)");
+  scan->add_option("--vendor", a.vendor, "find only nodes with this vendor-ID (0x1018:1, hex); faster")->type_name("HEX");
+  scan->add_option("--product", a.product, "find only nodes with this product code (0x1018:2, hex); faster")
+      ->type_name("HEX");
   auto* set_id = lss->add_subcommand(
       "set-id", "configure the node-ID of the node with this identity (--identity), or of the only node on the "
                 "bus; a node that had a node-ID takes the new one at its next NMT reset communication");
@@ -110,7 +113,7 @@ std::unique_ptr<LssMaster> run_lss(Master& master, const LssCommand& c, std::fun
         return end(1);
       }
       end(0);
-    });
+    }, c.known);
   } else if (c.name == "lss set-id") {
     std::make_shared<SetId>(*lss, c, end)->start();
   } else if (c.name == "lss identify") {

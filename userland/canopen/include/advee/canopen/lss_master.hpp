@@ -187,6 +187,9 @@ using LssScanCallback = std::function<void(const std::vector<LssFound>&, const L
 // is started again, twice at most per scan, before kLost is the result.
 // The LssMaster must outlive the scan. An invalid first_node_id ends it at
 // once (done() inside the call) with kInvalidArgument.
-void lss_scan(LssMaster& lss, std::optional<std::uint8_t> first_node_id, bool store, LssScanCallback done);
+// `known` words (a vendor-ID, a product code) are passed to each fastscan:
+// only slaves that have them are found, in fewer steps.
+void lss_scan(LssMaster& lss, std::optional<std::uint8_t> first_node_id, bool store, LssScanCallback done,
+              std::array<std::optional<std::uint32_t>, 4> known = {});
 
 }  // namespace advee::canopen
