@@ -7,7 +7,9 @@
 // handle() and about time through poll(); deadline() says when poll() is
 // next needed. Services run one at a time in the order asked (FIFO queue),
 // and each ends with exactly one call of its callback: answer, error code of
-// the slave, or timeout.
+// the slave, or timeout. Callbacks run from handle(), poll() or
+// cancel_all(), never inside the call that asked for the service; an
+// LssMaster destroyed with services pending drops their callbacks uncalled.
 //
 // LSS answers carry no address: an answer is the answer of whichever slave
 // is in configuration state (or matched the fastscan step). So after the
