@@ -75,7 +75,7 @@ void SimulatedDrive::build_dictionary() {
   od_.add<std::uint32_t>(0x1018, 1, epos ? 0x000000FBu : 0x0000005Au, A::kReadOnly);
   od_.add<std::uint32_t>(0x1018, 2, epos ? 0x64200000u : 0x00000065u, A::kReadOnly);
   od_.add<std::uint32_t>(0x1018, 3, 0x00010000, A::kReadOnly);
-  od_.add<std::uint32_t>(0x1018, 4, cfg_.node, A::kReadOnly);
+  od_.add<std::uint32_t>(0x1018, 4, cfg_.serial ? cfg_.serial : cfg_.node, A::kReadOnly);
   const auto& rp = epos ? kEposRpdo : kIclaRpdo;
   const auto& tp = epos ? kEposTpdo : kIclaTpdo;
   for (unsigned n = 1; n <= 4; ++n) {
