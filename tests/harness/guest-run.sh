@@ -18,6 +18,9 @@
 #                          VMTEST_MODBASE/lib/modules/$(uname -r) (a kernel the
 #                          host has not installed, such as the debug lane's)
 #   VMTEST_TESTLIST        file: "suite program path timeout" per line
+#   VMTEST_SLOWDOWN        optional: how many times slower than a stock kernel
+#                          this guest's kernel runs (the debug lane: 4), for
+#                          the programs' timing limits (tsuart/traffic)
 #   VMTEST_CONSOLE_RESULTS 1: also print results.tsv to the console (ARM lane)
 #   VMTEST_SHELL           1: after installing the modules, an interactive shell
 #                          on the console instead of the tests
@@ -30,6 +33,7 @@
 # shellcheck disable=SC1090
 . "$1" || { echo "guest-run: cannot read job file $1" >/dev/console; echo o >/proc/sysrq-trigger; }
 export VMTEST_REPO VMTEST_BUILD VMTEST_LANE VMTEST_MODULES
+export VMTEST_SLOWDOWN="${VMTEST_SLOWDOWN:-1}"
 export PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin
 export HOME=/root LC_ALL=C
 R=$VMTEST_RESULTS
