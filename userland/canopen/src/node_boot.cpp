@@ -107,6 +107,7 @@ void NodeBoot::with_retry(std::function<void(SdoCallback)> op, SdoCallback done,
 void NodeBoot::fail(std::error_code ec, const std::string& why) {
   char head[96];
   std::snprintf(head, sizeof head, "%s (node %u): boot failed: ", cfg_.name.c_str(), cfg_.node);
+  reason_ = why;
   error_ = head + why;
   auto d = std::move(done_);
   done_ = nullptr;
@@ -117,6 +118,7 @@ void NodeBoot::boot(Done done) {
   lifetime_.renew();  // answers to an earlier boot are not this one's
   done_ = std::move(done);
   error_.clear();
+  reason_.clear();
   mismatch_.clear();
   booted_ = false;
   check_identity(0);

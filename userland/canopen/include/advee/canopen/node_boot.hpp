@@ -63,6 +63,7 @@ class NodeBoot {
   void boot(Done done);
   bool booted() const { return booted_; }
   const std::string& error() const { return error_; }
+  const std::string& reason() const { return reason_; }  // error() without "name (node N): boot failed: "
   const NodeBootConfig& config() const { return cfg_; }
   unsigned retries() const { return retries_; }  // timed-out transfers repeated, over all boots
 
@@ -77,6 +78,7 @@ class NodeBoot {
   NodeBootConfig cfg_;
   Done done_;
   std::string error_;
+  std::string reason_;
   std::string mismatch_;
   bool booted_ = false;
   unsigned retries_ = 0;
