@@ -27,6 +27,19 @@ std::string describe_need(PdoKind kind, unsigned n, const std::vector<PdoEntry>&
 }
 }  // namespace
 
+void take_pdos_from_device(DriveConfig& d, std::initializer_list<std::uint16_t> control,
+                           std::initializer_list<std::uint16_t> status) {
+  if (!d.device) return;
+  if (const PdoMapping* m = find_pdo(d.device->pdos, PdoKind::kRpdo, control)) {
+    d.control_rpdo = m->number;
+    d.control_entries = m->entries;
+  }
+  if (const PdoMapping* m = find_pdo(d.device->pdos, PdoKind::kTpdo, status)) {
+    d.status_tpdo = m->number;
+    d.status_entries = m->entries;
+  }
+}
+
 Drive402::Drive402(Master& master, DriveConfig cfg)
     : master_(master),
       cfg_(std::move(cfg)),

@@ -59,6 +59,21 @@ NodeBootConfig boot_config_from_dcf(const DeviceDescription& dcf, std::string na
   if (const OdEntry* serial = od.find(0x1018, 4); serial && serial->parameter_text)
     c.identity[3] = od.get<std::uint32_t>(0x1018, 4);
 
+  for (PdoKind kind : {PdoKind::kRpdo, PdoKind::kTpdo}) {
+    for (unsigned n = 1; n <= 512; ++n) {
+      const std::uint16_t comm = pdo_comm_index(kind, n), map = pdo_map_index(kind, n);
+      if (!od.exists(comm, 1) || !od.exists(map, 0)) continue;
+      PdoMapping m;
+      m.kind = kind;
+      m.number = n;
+      m.cob_id = od.get<std::uint32_t>(comm, 1);
+      m.transmission_type = od.get<std::uint8_t>(comm, 2);
+      for (std::uint8_t s = 1; s <= od.get<std::uint8_t>(map, 0) && s < 0x41; ++s)
+        m.entries.push_back(PdoEntry::from_raw(od.get<std::uint32_t>(map, s)));
+      c.pdos.push_back(std::move(m));
+    }
+  }
+
   auto configured = [](const OdEntry& e) { return e.parameter_text && e.access != Access::kReadOnly; };
   for (const auto& [key, e] : od.entries())
     if (!is_pdo_object(key.first) && configured(e)) c.configuration.push_back({key.first, key.second, e.value});
@@ -90,6 +105,17 @@ NodeBootConfig boot_config_from_dcf(const DeviceDescription& dcf, std::string na
     }
   }
   return c;
+}
+
+const PdoMapping* find_pdo(const std::vector<PdoMapping>& pdos, PdoKind kind,
+                           std::initializer_list<std::uint16_t> objects) {
+  for (const PdoMapping& m : pdos) {
+    if (m.kind != kind) continue;
+    bool all = true;
+    for (std::uint16_t index : objects) all = all && m.maps(index, 0);
+    if (all) return &m;
+  }
+  return nullptr;
 }
 
 void NodeBoot::with_retry(std::function<void(SdoCallback)> op, SdoCallback done, unsigned attempt) {

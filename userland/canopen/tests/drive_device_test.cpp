@@ -79,5 +79,34 @@ TEST_F(DriveDeviceTest, EposRefusesAnotherProduct) {
   EXPECT_EQ(epos_sim.nmt_state(), NmtState::kPreOperational);
 }
 
+// The DCF moves the velocity feedback to TPDO3 (6041 + 606C, valid): the
+// driver takes that layout from the DCF instead of its built-in TPDO4.
+TEST_F(DriveDeviceTest, EposTakesItsPdoLayoutFromTheDcf) {
+  std::string dcf(sim::shipped_eds(sim::DriveProfile::kEpos));
+  auto param = [&dcf](const std::string& section, const std::string& value) {
+    const auto at = dcf.find("[" + section + "]\n");
+    ASSERT_NE(at, std::string::npos) << section;
+    dcf.insert(dcf.find("\n\n", at) + 1, "ParameterValue=" + value + "\n");
+  };
+  param("1802sub1", "$NODEID+0x40000380");
+  param("1A02sub2", "0x606C0020");
+  DescriptionResult r = parse_device_description(dcf + "\n[DeviceComissioning]\nNodeID=1\n", "epos.dcf");
+  ASSERT_TRUE(r.description);
+  EposConfig c;
+  c.drive.device = boot_config_from_dcf(*r.description, "epos");
+  EposDriver epos(master, c);
+  EXPECT_EQ(epos.drive().config().status_tpdo, 3u);
+  EXPECT_EQ(epos.drive().config().control_rpdo, 4u);  // the DCF's RPDO4 default, as before
+  ASSERT_FALSE(wait([&](auto d) { epos.boot(d); })) << epos.drive().boot_error();
+  EXPECT_EQ(epos.drive().status_mapping().number, 3u);
+  EXPECT_EQ(epos.drive().status_mapping().can_id(), 0x381u);
+  ASSERT_FALSE(wait([&](auto d) { epos.enable(d); }));
+  ASSERT_TRUE(epos.set_speed(0.5));
+  for (int i = 0; i < 500; ++i) tick();
+  ASSERT_TRUE(epos.speed());
+  EXPECT_NEAR(*epos.speed(), 0.5, 0.001);
+  EXPECT_EQ(epos_sim.od().get<std::uint32_t>(0x1803, 1) & kPdoCobInvalid, kPdoCobInvalid);  // TPDO4 left off
+}
+
 }  // namespace
 }  // namespace advee::canopen::drivers

@@ -49,6 +49,13 @@ struct DriveConfig {
   std::optional<NodeBootConfig> device = std::nullopt;
 };
 
+// A drive driver's PDO layout from its device description: when d.device is
+// set and maps an RPDO with every object of `control` (a TPDO with every
+// object of `status`), that PDO's number and entries replace the driver's
+// built-in choice, which stays for a drive without a description.
+void take_pdos_from_device(DriveConfig& d, std::initializer_list<std::uint16_t> control,
+                           std::initializer_list<std::uint16_t> status);
+
 enum class DriveEventKind { kEmcy, kHeartbeatLost, kHeartbeatResumed, kRebooted, kFault };
 struct DriveEvent {
   DriveEventKind kind;

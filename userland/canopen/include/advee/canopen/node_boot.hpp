@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -19,6 +20,7 @@
 #include "advee/canopen/device_description.hpp"
 #include "advee/canopen/lifetime.hpp"
 #include "advee/canopen/master.hpp"
+#include "advee/canopen/pdo.hpp"
 #include "advee/canopen/sdo_sequence.hpp"
 
 namespace advee::canopen {
@@ -36,6 +38,9 @@ struct NodeBootConfig {
   // 0x1018:1..4 vendor-ID, product code, revision number, serial number; unset: not checked.
   std::array<std::optional<std::uint32_t>, 4> identity{};
   std::vector<SdoWrite> configuration;  // downloaded in this order
+  // Every PDO the description maps (its ParameterValues, else its defaults),
+  // valid or not: the drive drivers take their layouts from here (find_pdo()).
+  std::vector<PdoMapping> pdos;
   unsigned sdo_attempts = 3;            // per transfer, counting the first
   bool start = true;                    // NMT start at the end
 };
@@ -48,6 +53,11 @@ struct NodeBootConfig {
 // lets a device remap: COB-ID invalid, mapping count 0, mapped objects,
 // mapping count, the other communication entries, the COB-ID.
 NodeBootConfig boot_config_from_dcf(const DeviceDescription& dcf, std::string name);
+
+// The first PDO of this kind that maps every one of the objects (sub-index 0);
+// nullptr if none does.
+const PdoMapping* find_pdo(const std::vector<PdoMapping>& pdos, PdoKind kind,
+                           std::initializer_list<std::uint16_t> objects);
 
 class NodeBoot {
  public:
