@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -99,7 +100,7 @@ std::optional<std::int64_t> parse_number(std::string_view s, bool* too_big = nul
     base = 8;
     s.remove_prefix(1);
   }
-  unsigned __int128 v = 0;
+  std::uint64_t v = 0;
   for (char c : s) {
     unsigned d;
     if (c >= '0' && c <= '9') d = static_cast<unsigned>(c - '0');
@@ -107,15 +108,15 @@ std::optional<std::int64_t> parse_number(std::string_view s, bool* too_big = nul
     else if (c >= 'A' && c <= 'F') d = static_cast<unsigned>(c - 'A' + 10);
     else return std::nullopt;
     if (d >= base) return std::nullopt;
-    v = v * base + d;
-    if (v > 0xFFFFFFFFFFFFFFFFull) {
+    if (v > (UINT64_MAX - d) / base) {
       if (too_big) *too_big = true;
       return std::nullopt;
     }
+    v = v * base + d;
   }
-  // Values above INT64_MAX (UNSIGNED64) keep their bits.
-  const auto u = static_cast<std::uint64_t>(v);
-  return neg ? -static_cast<std::int64_t>(u) : static_cast<std::int64_t>(u);
+  // Values above INT64_MAX (UNSIGNED64) keep their bits; the negation is
+  // done unsigned so that no magnitude overflows.
+  return static_cast<std::int64_t>(neg ? 0 - v : v);
 }
 
 class Parser {
@@ -288,17 +289,19 @@ std::optional<std::vector<std::uint8_t>> Parser::evaluate(const Key& k, const Ty
   while (true) {
     const auto plus = rest.find('+', 1);  // a leading '+' is a sign
     const std::string_view term = trim(rest.substr(0, plus));
-    if (lower(term) == "$nodeid") {
-      sum += d_.node_id;
-    } else {
+    std::optional<std::int64_t> n = std::int64_t{d_.node_id};
+    if (lower(term) != "$nodeid") {
       bool too_big = false;
-      const auto n = parse_number(term, &too_big);
+      n = parse_number(term, &too_big);
       if (!n) {
         error(k.line, "expected a number (0x hexadecimal, 0 octal, decimal) or $NODEID for " + k.name + " of " +
                           std::string(t.name) + ", found '" + k.value + "'" + (too_big ? " (above 64 bits)" : ""));
         return std::nullopt;
       }
-      sum += *n;
+    }
+    if (__builtin_add_overflow(sum, *n, &sum)) {
+      error(k.line, "expected " + k.name + " within 64 bits, found '" + k.value + "'");
+      return std::nullopt;
     }
     if (plus == std::string_view::npos) break;
     rest.remove_prefix(plus + 1);

@@ -309,6 +309,10 @@ TEST(DeviceDescriptionTest, ErrorsSayFileLineAndWhatWasExpected) {
       {"DefaultValue=0x00020192", "DefaultValue=0x1000000000000000000", "DefaultValue=0x1000000000000000000",
        "(above 64 bits)"},
       {"CompactSubObj=3", "CompactSubObj=0", "CompactSubObj=0", "expected CompactSubObj 1..254"},
+      {"DefaultValue=0x80000000+$NODEID", "DefaultValue=0x7FFFFFFFFFFFFFFF+1+$NODEID",
+       "DefaultValue=0x7FFFFFFFFFFFFFFF+1+$NODEID", "within 64 bits"},
+      {"DefaultValue=-2", "DefaultValue=-0x8000000000000000", "DefaultValue=-0x8000000000000000",
+       "within the range of INTEGER16"},
       {"[1f80]\nParameterName=NMT startup\n", "[1f80]\n", "[1f80]", "expected ParameterName=<name> in [1f80]"},
   };
   for (const BadCase& c : cases) {
