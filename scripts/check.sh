@@ -8,11 +8,12 @@
 #   no test binaries), the web dashboard in headless Chromium
 #   (userland/web/tests/browser-check.sh), ARM userland cross builds with the
 #   install manifest of each target, DKMS (on 6.1, 6.12, 6.12-rt), the x86_64
-#   VM lane (every suite, on 6.1; the kernel suites also dealt over 6.12 and
-#   6.12-rt, docs/kernels.md),
-#   the debug-kernel VM lane (KASAN, lockdep, kmemleak, UBSAN: the kernel
-#   suites; its kernel is built once and cached, see scripts/debug-kernel.sh,
-#   in the background while the other stages run) and the armhf VM lane.
+#   VM lanes (the suites above our drivers on 6.1; the kernel suites dealt
+#   over stock 6.1, 6.12 and 6.12-rt, docs/kernels.md),
+#   the debug-kernel VM lane (6.12 PREEMPT_RT with KASAN, lockdep, kmemleak,
+#   UBSAN: every kernel suite; its kernel is built once and cached, see
+#   scripts/debug-kernel.sh, in the background while the other stages run)
+#   and the armhf VM lane.
 # --fast (make check-fast): gates, then side by side the unit tests and the
 # kernel suites in two x86_64 guests.
 # Every stage runs even if an earlier one failed. Before the summary: the
@@ -76,9 +77,9 @@ lanes=${VMTEST_LANES:-x86_64 armhf debug}
 [ "$mode" = fast ] && lanes=x86_64
 [ "$mode" = selected ] && lanes=${VMTEST_LANES:-x86_64}
 
-# The debug lane's kernel: 6.1 until every kernel suite passes on the 6.12
-# PREEMPT_RT debug kernel (issue 19 item 3; docs/kernels.md).
-export ADVEE_DEBUG_KERNEL=${ADVEE_DEBUG_KERNEL:-6.1}
+# The debug lane's kernel: 6.12 with PREEMPT_RT (issue 19 item 3;
+# docs/kernels.md); ADVEE_DEBUG_KERNEL=6.1 for the 6.1 PREEMPT one.
+export ADVEE_DEBUG_KERNEL=${ADVEE_DEBUG_KERNEL:-6.12-rt}
 # The debug kernel (a cold build: 21 minutes next to the other stages on a
 # quiet 2-core machine) is needed only by the debug lane: build it in the
 # background from the start, at the same priority as the stages in front
@@ -123,9 +124,15 @@ x86_lane() {	# x86_lane LANE [--test SUITE]...: one x86_64 guest
 	[ -s "$BUILD/kmod/x86_64/modules.list" ] || "$TOP/scripts/build-kmod.sh" x86_64
 	stage "$lane VM lane" "$TOP/tests/harness/vm-x86.sh" --lane "$lane" "$@"
 }
-newer_kernel() {	# newer_kernel 6.12|6.12-rt: its share of the kernel suites (lib-host.sh: newer_kernel_suites)
+stock_kernel() {	# stock_kernel 6.1|6.12|6.12-rt: its share of the kernel suites (lib-host.sh: stock_kernel_suites)
 	local k=$1 sel
-	mapfile -t sel < <(newer_kernel_suites "$k" | awk '{ print "--test"; print }')
+	mapfile -t sel < <(stock_kernel_suites "$k" | awk '{ print "--test"; print }')
+	if [ "$k" = 6.1 ]; then
+		# The debug lane runs on 6.1 itself when ADVEE_DEBUG_KERNEL=6.1.
+		[ "$ADVEE_DEBUG_KERNEL" = 6.1 ] && return 0
+		x86_lane x86_64-6.1 "${sel[@]}"
+		return
+	fi
 	[ -s "$BUILD/kmod/x86_64-$k/modules.list" ] || "$TOP/scripts/build-kmod.sh" "x86_64-$k"
 	stage "x86_64-$k VM lane" "$TOP/tests/harness/vm-x86.sh" --kernel-flavour "$k" "${sel[@]}"
 }
@@ -236,12 +243,14 @@ full)
 	# Four tracks side by side. A TCG guest waits on timers most of the
 	# time (an x86_64 guest kept 0.6 of a core busy over its 30 minutes), so
 	# up to three guests (each with 2 vCPUs) run next to the host's builds
-	# (CPU-bound, at a lower priority). Each kernel suite runs on 6.1 (the
-	# debug lane; the armhf lane if portable) and on one 6.12 kernel, stock
-	# or PREEMPT_RT (docs/kernels.md); the other suites on Debian's 6.1:
-	#   vm      the kernel suites on stock 6.12, then the armhf lane, then
-	#           the two-computer test (two guests at once, about 3 min),
-	#           then the armel cross build (this track ends first otherwise);
+	# (CPU-bound, at a lower priority). Each kernel suite runs on 6.12
+	# PREEMPT_RT (the debug lane), on 6.1 (the armhf lane if portable) and
+	# on stock 6.12, or on stock 6.1 and 6.12-rt (docs/kernels.md); the
+	# other suites on Debian's 6.1:
+	#   vm      the kernel suites on stock 6.12, then those on stock 6.1,
+	#           then the armhf lane, then the two-computer test (two guests
+	#           at once, about 3 min), then the armel cross build (this
+	#           track ends first otherwise);
 	#   vmuser  the x86_64 guest (6.1) of the suites that are not kernel
 	#           suites (user-space stack, install), then DKMS (a guest per
 	#           amd64 kernel), then the kernel suites with rt_lane=1 on
@@ -253,8 +262,8 @@ full)
 	#           priority next to three guests), the browser check, lintian
 	#           and the packages' programs.
 	mapfile -t system_sel < <(system_suites | awk '{ print "--test"; print }')
-	vm_track() { newer_kernel 6.12; armhf_lane; pair_check; cross_check armel; }
-	vmuser_track() { x86_lane x86_64 "${system_sel[@]}"; dkms_check; newer_kernel 6.12-rt; cross_check armhf; }
+	vm_track() { stock_kernel 6.12; stock_kernel 6.1; armhf_lane; pair_check; cross_check armel; }
+	vmuser_track() { x86_lane x86_64 "${system_sel[@]}"; dkms_check; stock_kernel 6.12-rt; cross_check armhf; }
 	track vm vm_track
 	track vmuser vmuser_track
 	track host host_checks
@@ -269,7 +278,7 @@ done >"$RESULTS/all.tsv"
 "$TOP/scripts/skip-policy.sh" "$RESULTS/all.tsv" >"$RESULTS/skip-policy.tsv"
 cat "$RESULTS/skip-policy.tsv" >>"$RESULTS/all.tsv"
 # VM time per suite and lane (the 7th column of the lanes' rows).
-for lane in x86_64 x86_64-2 x86_64-6.12 x86_64-6.12-rt armhf debug twocomp-a twocomp-b; do
+for lane in x86_64 x86_64-2 x86_64-6.1 x86_64-6.12 x86_64-6.12-rt armhf debug debug-smp2 twocomp-a twocomp-b; do
 	[ -s "$RESULTS/$lane.tsv" ] || continue
 	awk -F'\t' -v lane="$lane" '$7 != "" {
 			s = $1; sub(/^[^:]*: /, "", s); sub(/\/.*/, "", s); t[s] += $7

@@ -3,8 +3,8 @@
 #
 # fetch-arm-sysroot.sh DEBARCH: Debian's armel/armhf builds of the libraries
 # the userland links (LCM, libgpiod, yaml-cpp, libsystemd, spdlog/fmt, ncurses
-# and what their .so files need, and the header-only Eigen, CLI11,
-# nlohmann-json, websocketpp, asio),
+# and what their .so files need, libsodium and OpenSSL for advee-web, and the
+# header-only Eigen, CLI11, nlohmann-json, websocketpp, asio),
 # downloaded with apt-get download through the
 # private apt setup of fetch-arm-kernel.sh (its lists dir; no foreign
 # architecture is ever added to dpkg) and extracted into
@@ -25,7 +25,8 @@ libgpiod-dev libgpiod2 libyaml-cpp-dev libyaml-cpp0.7
 libsystemd-dev libsystemd0 libcap2 libgcrypt20 libgpg-error0 liblz4-1 liblzma5 libzstd1
 libspdlog-dev libspdlog1.10 libfmt-dev libfmt9
 libncurses-dev libncurses6 libncursesw6 libtinfo6
-libeigen3-dev libcli11-dev nlohmann-json3-dev libwebsocketpp-dev libasio-dev libsodium-dev libsodium23)
+libeigen3-dev libcli11-dev nlohmann-json3-dev libwebsocketpp-dev libasio-dev libsodium-dev libsodium23
+libssl-dev libssl3)
 sysroot=$cache/sysroot
 stamp=$sysroot/.advee-packages
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "${pkgs[*]}" ]; then

@@ -189,18 +189,21 @@ system_suites() {
 	done
 	return 0
 }
-# newer_kernel_suites 6.12|6.12-rt: the kernel suites make check runs on that
-# kernel (docs/kernels.md): those whose settings say rt_lane=1 (the DIO
-# irqchip, ts-can1's shared interrupt) on 6.12-rt, the others on 6.12, so
-# that each kernel suite runs on one of the two in every run.
-# A suite runs on 6.12 with some of its programs also on 6.12-rt when its
-# settings say rt_programs=PROG... (tsuart: traffic, issue 19 item 4).
-newer_kernel_suites() {
+# stock_kernel_suites 6.1|6.12|6.12-rt: the kernel suites make check runs on
+# that stock Debian kernel (docs/kernels.md), besides the debug lane, which
+# runs all of them: those whose settings say rt_lane=1 (the DIO irqchip,
+# ts-can1's shared interrupt, n_rs485 under threaded interrupts) on 6.12-rt
+# and on 6.1 (where they have two CPUs: dio-i2c/unbind-poll needs them), the
+# others on 6.12, so that each kernel suite runs on a stock kernel of each
+# series it can in every run. A suite runs on 6.12 with some of its programs
+# also on 6.12-rt when its settings say rt_programs=PROG... (tsuart:
+# traffic, issue 19 item 4).
+stock_kernel_suites() {
 	local suite settings prog
 	for suite in $(kernel_suites); do
 		settings=$TOP/tests/vm/$suite/settings
 		if grep -qx 'rt_lane=1' "$settings"; then
-			[ "$1" = 6.12-rt ] && echo "$suite"
+			[ "$1" = 6.12 ] || echo "$suite"
 		else
 			[ "$1" = 6.12 ] && echo "$suite"
 			[ "$1" = 6.12-rt ] || continue
@@ -208,6 +211,19 @@ newer_kernel_suites() {
 				echo "$suite/$prog"
 			done
 		fi
+	done
+	return 0
+}
+# two_cpu_programs: SUITE/PROGRAM for each kernel-suite program that needs a
+# second CPU (its settings say smp_programs=PROG...; with one CPU it skips
+# itself): the debug lane's PREEMPT_RT guest has one CPU, so the lane runs
+# them in a second guest with two.
+two_cpu_programs() {
+	local suite prog
+	for suite in $(kernel_suites); do
+		for prog in $(sed -n 's/^smp_programs=//p' "$TOP/tests/vm/$suite/settings"); do
+			echo "$suite/$prog"
+		done
 	done
 	return 0
 }

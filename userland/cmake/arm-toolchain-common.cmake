@@ -27,4 +27,11 @@ if(ADVEE_ARM_SYSROOT)
   set(CMAKE_EXE_LINKER_FLAGS_INIT
     "-Wl,-rpath-link,${ADVEE_ARM_SYSROOT}/usr/lib/${ADVEE_ARM_TRIPLET} -Wl,-rpath-link,${ADVEE_ARM_SYSROOT}/lib/${ADVEE_ARM_TRIPLET} -L${ADVEE_ARM_SYSROOT}/usr/lib/${ADVEE_ARM_TRIPLET} -L${ADVEE_ARM_SYSROOT}/lib/${ADVEE_ARM_TRIPLET}")
   set(CMAKE_SHARED_LINKER_FLAGS_INIT "${CMAKE_EXE_LINKER_FLAGS_INIT}")
+  # Debian puts a library's architecture-dependent headers under
+  # /usr/include/TRIPLET (OpenSSL's openssl/opensslconf.h and
+  # configuration.h), which a native gcc searches by itself and the cross
+  # gcc, knowing nothing of this sysroot, does not. Last on the path: the
+  # sysroot holds no libc headers, so nothing there shadows the toolchain's.
+  set(CMAKE_C_STANDARD_INCLUDE_DIRECTORIES ${ADVEE_ARM_SYSROOT}/usr/include/${ADVEE_ARM_TRIPLET})
+  set(CMAKE_CXX_STANDARD_INCLUDE_DIRECTORIES ${ADVEE_ARM_SYSROOT}/usr/include/${ADVEE_ARM_TRIPLET})
 endif()

@@ -286,7 +286,10 @@ int main(void)
 	long pause_pin;
 	double end;
 
-	/* The PREEMPT_RT guest has one CPU (vm-x86.sh); the 6.1 lanes run it. */
+	/*
+	 * The PREEMPT_RT guests have one CPU (vm-x86.sh, vm-debug.sh): the
+	 * stock 6.1 lane and the debug lane's second guest run it (settings).
+	 */
 	if (sysconf(_SC_NPROCESSORS_ONLN) < 2) {
 		printf("TAP version 13\n1..0 # SKIP the guest has one CPU: the unbind must run beside the poll\n");
 		return 4;	/* guest-run.sh: a skip */

@@ -15,11 +15,18 @@
  * interrupts: with ten ports at full rate under TCG on a shared host a
  * virtual CPU can be descheduled for milliseconds while it holds a port's
  * interrupt, so the FIFOs are 64 deep here (any loss would still be an
- * overrun and fail the test).
+ * overrun and fail the test). When the handler is threaded (PREEMPT_RT),
+ * ten ports' interrupt threads on one emulated CPU with the debug kernel's
+ * checks cannot promise that much either: there characters may be lost, but
+ * only as overruns the simulator counted on that very port, and what arrives
+ * must be the port's own characters in order and unaltered (tsuart/traffic
+ * has the same rule), so a character routed to the wrong port still fails.
  */
 #include "tsuart-lib.h"
 
 #define K 3000			/* characters per port and direction, ~0.3 s */
+/* How long a closed port's line may take to carry its K characters. */
+#define CLOSED_LINE_S	10.0
 
 struct port_run {
 	int open;
@@ -48,6 +55,7 @@ static void round_run(int open_parity)
 	double timeout = 3;	/* without progress */
 	struct ts7800_sim_wire_stats st;
 	int p, i, wires_ok = 1;
+	double end;
 
 	for (p = 0; p < NPORTS; p++) {
 		struct port_run *r = &runs[p];
@@ -110,6 +118,7 @@ static void round_run(int open_parity)
 		}
 		collector_join(&r->rx_col);
 		collector_join(&r->tx_col);
+		wire_stats(r->wfd, &st);
 		for (i = 0; i < K; i++) {
 			expect[i] = r->rx_sent[i];
 			if (r->nine && r->mark)
@@ -117,12 +126,22 @@ static void round_run(int open_parity)
 		}
 		d = first_diff(expect, r->rx_got, K);
 		if (r->rx_col.got != K || d >= 0)
-			tap_diag("port %d: received %zu of %d, first difference at %ld",
-				 p, r->rx_col.got, K, d);
-		tap_ok(r->rx_col.got == K && d < 0,
-		       "round %d: open port %d (%s) receives exactly its own %d characters%s",
-		       open_parity, p, r->nine ? (r->mark ? "9-bit mark" : "9-bit space") : "8-bit",
-		       K, r->nine ? ", 9th bit as parity flag" : "");
+			tap_diag("port %d: received %zu of %d, first difference at %ld, %llu overruns",
+				 p, r->rx_col.got, K, d, (unsigned long long)st.rx_overruns);
+		if (tty_irq_thread(r->fd) > 0)
+			tap_ok(is_subsequence(r->rx_got, r->rx_col.got, expect, K) &&
+			       K - r->rx_col.got == st.rx_overruns,
+			       "round %d: open port %d (%s, threaded handler) receives its own %d characters in order%s, %zu delivered, the %llu lost all overruns",
+			       open_parity, p,
+			       r->nine ? (r->mark ? "9-bit mark" : "9-bit space") : "8-bit",
+			       K, r->nine ? ", 9th bit as parity flag" : "", r->rx_col.got,
+			       (unsigned long long)(K - r->rx_col.got));
+		else
+			tap_ok(r->rx_col.got == K && d < 0,
+			       "round %d: open port %d (%s) receives exactly its own %d characters%s",
+			       open_parity, p,
+			       r->nine ? (r->mark ? "9-bit mark" : "9-bit space") : "8-bit",
+			       K, r->nine ? ", 9th bit as parity flag" : "");
 		d = first_diff(r->tx_expect, r->tx_got, K);
 		tap_ok(r->tx_col.got == K && d < 0,
 		       "round %d: port %d's wire shows its %d transmitted characters%s",
@@ -134,9 +153,17 @@ static void round_run(int open_parity)
 
 		if (r->open)
 			continue;
-		/* Let the closed port's line finish, then look at its counters. */
-		usleep(200000);
-		wire_stats(r->wfd, &st);
+		/*
+		 * Its line carries K characters (0.29 s at 115200 Bd, behind
+		 * the other ports' when the simulator ran late): wait until
+		 * all of them have reached the UART or were counted overrun,
+		 * with a deadline, then look at its counters.
+		 */
+		for (end = now_s() + CLOSED_LINE_S; ; usleep(10000)) {
+			wire_stats(r->wfd, &st);
+			if (st.from_wire + st.rx_overruns >= K || now_s() > end)
+				break;
+		}
 		tap_ok(st.to_wire == 0 && st.from_wire + st.rx_overruns == K &&
 		       st.from_wire <= st.fifo_depth,
 		       "round %d: closed port %d: transmits nothing, its %d characters end in its own FIFO (%llu) or overrun (%llu)",

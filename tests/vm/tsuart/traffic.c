@@ -145,17 +145,6 @@ out:
 		close(wfd);
 }
 
-/* Is got[0..ng) what sent[0..ns) becomes after dropping some characters? */
-static int is_subsequence(const uint16_t *got, size_t ng, const uint16_t *sent, size_t ns)
-{
-	size_t i = 0, j;
-
-	for (j = 0; j < ns && i < ng; j++)
-		if (got[i] == sent[j])
-			i++;
-	return i == ng;
-}
-
 static void rx_test(const struct config *c, int port, const struct rate *r, int nine)
 {
 	struct serial_icounter_struct ic0, ic1;

@@ -307,4 +307,15 @@ static inline long first_diff(const uint16_t *a, const uint16_t *b, size_t n)
 	return -1;
 }
 
+/* Is got[0..ng) what sent[0..ns) becomes after dropping some characters? */
+static inline int is_subsequence(const uint16_t *got, size_t ng, const uint16_t *sent, size_t ns)
+{
+	size_t i = 0, j;
+
+	for (j = 0; j < ns && i < ng; j++)
+		if (got[i] == sent[j])
+			i++;
+	return i == ng;
+}
+
 #endif /* TSUART_LIB_H */

@@ -44,7 +44,11 @@ TEST(CanopenctlCliTest, UsageErrorsExit2BeforeAnyIo) {
                            "-i nosuchcan0 scan 9-3", "-i nosuchcan0 scan 1-128", "-i nosuchcan0 hb 0",
                            "-i nosuchcan0 hb x", "-i nosuchcan0 pdo remap 1 xpdo 1",
                            "-i nosuchcan0 pdo remap 1 tpdo 5", "-i nosuchcan0 pdo remap 1 tpdo 1 6041:0/65",
-                           "-i nosuchcan0 pdo remap 1 tpdo 1 --type 256", "-i nosuchcan0 pdo remap 1"}) {
+                           "-i nosuchcan0 pdo remap 1 tpdo 1 --type 256", "-i nosuchcan0 pdo remap 1",
+                           "-i nosuchcan0 lss", "-i nosuchcan0 lss scan --assign 0", "-i nosuchcan0 lss scan --store",
+                           "-i nosuchcan0 lss set-id", "-i nosuchcan0 lss set-id 128",
+                           "-i nosuchcan0 lss set-id 5 --identity 1:2:3", "-i nosuchcan0 lss --answer-ms 0 identify",
+                           "-i nosuchcan0 lss --settle-ms 100 identify", "-i nosuchcan0 lss bogus"}) {
     const Outcome r = canopenctl(args);
     EXPECT_EQ(r.status, 2) << "canopenctl " << args << ":\n" << r.out;
     EXPECT_FALSE(tried_io(r.out)) << "canopenctl " << args << " opened the socket:\n" << r.out;
@@ -55,7 +59,8 @@ TEST(CanopenctlCliTest, ValidArgumentsReachTheSocket) {
   for (const char* args : {"-i nosuchcan0 -t 200 write 1 6081 i8 -128", "-i nosuchcan0 block -b 127 read 1 2000 str",
                            "-i nosuchcan0 block write 1 2000 hex 00ff", "-i nosuchcan0 scan 1-3",
                            "-i nosuchcan0 hb 1", "-i nosuchcan0 pdo remap 1 tpdo 4 6041:0/16 --type 254 --disabled",
-                           "-i nosuchcan0 pdo 1"}) {
+                           "-i nosuchcan0 pdo 1", "-i nosuchcan0 lss scan --assign 10 --store",
+                           "-i nosuchcan0 lss set-id 5 --identity FB:64200000:10000:1", "-i nosuchcan0 lss identify"}) {
     const Outcome r = canopenctl(args);
     EXPECT_EQ(r.status, 1) << "canopenctl " << args << ":\n" << r.out;
     EXPECT_TRUE(tried_io(r.out)) << "canopenctl " << args << ":\n" << r.out;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 // canopenctl: command-line CANopen master tool on SocketCAN. NMT commands,
 // typed SDO read/write (block transfer too), a scan of the nodes that answer
-// with their identity, PDO dump and remap, CiA 402 status and power control,
-// live traffic and heartbeat monitors. Every argument is checked before the
+// with their identity, LSS (CiA 305: fastscan, node-ID by identity), PDO
+// dump and remap, CiA 402 status and power control, live traffic and
+// heartbeat monitors. Every argument is checked before the
 // CAN socket is opened. Exit status (advee/cli.hpp) 0 on success and after --help and
 // --version, 1 on a CANopen or I/O error (message on stderr), 2 on usage
 // errors.
@@ -19,6 +20,7 @@
 #include "advee/canopen/pdo_config.hpp"
 #include "advee/canopen/runtime.hpp"
 #include "advee/cli.hpp"
+#include "canopenctl_lss.hpp"
 #include "canopenctl_text.hpp"
 
 using namespace advee::canopen;
@@ -46,6 +48,7 @@ struct Command {
   long count = -1;  // monitor, hb: frames, -1 forever
   std::pair<std::uint8_t, std::uint8_t> nodes{1, 127};  // scan
   PdoMapping pdo;  // pdo remap
+  LssCommand lss;
 };
 
 struct Args {
@@ -58,6 +61,7 @@ struct Args {
   std::vector<std::string> pdo_entries;
   int pdo_type = 255;
   bool pdo_disabled = false;
+  LssArgs lss;
 };
 
 // The object and type arguments of read/write and block read/write.
@@ -114,6 +118,7 @@ void describe(CLI::App& app, Args& a) {
   monitor->add_option("count", a.count, "frames (default: until interrupted)")->check(CLI::Range(1L, 1000000000L));
   auto* hb = app.add_subcommand("hb", "heartbeats and boot-ups with the NMT state they report");
   hb->add_option("count", a.count, "heartbeats (default: until interrupted)")->check(CLI::Range(1L, 1000000000L));
+  describe_lss(app, a.lss);
 }
 
 // Throws UsageError.
@@ -130,6 +135,10 @@ Command check(const std::string& name, const Args& a) {
     return c;
   }
   if (name == "monitor" || name == "hb") return c;
+  if (name.rfind("lss ", 0) == 0) {
+    c.lss = check_lss(name, a.lss);
+    return c;
+  }
   if (name == "scan") {
     c.nodes = parse_node_range(a.nodes);
     return c;
@@ -236,6 +245,7 @@ int main(int argc, char** argv) {
       }
     };
     std::unique_ptr<StatusPoller> poller;
+    std::unique_ptr<LssMaster> lss;
 
     const std::uint8_t node = c.node;
     if (cmd == "nmt") {
@@ -322,6 +332,11 @@ int main(int argc, char** argv) {
         });
       };
       poller = std::make_unique<StatusPoller>(master, read_status);
+    } else if (cmd.rfind("lss ", 0) == 0) {
+      lss = run_lss(master, c.lss, [&](int status) {
+        rc = status;
+        loop.stop();
+      });
     } else if (cmd == "hb" || cmd == "monitor") {
       // count lines, then nothing: frames of the batch that ends the count
       // are still delivered after loop.stop().

@@ -12,6 +12,13 @@
 #include <optional>
 #include <stdexcept>
 #include <utility>
+#include <openssl/err.h>
+#include <openssl/ssl.h>
+#include <openssl/x509.h>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <websocketpp/config/asio.hpp>
 #include <websocketpp/config/asio_no_tls.hpp>
 #include <websocketpp/server.hpp>
 
@@ -26,7 +33,6 @@
 namespace advee::web {
 
 namespace {
-using Server = websocketpp::server<websocketpp::config::asio>;
 using Hdl = websocketpp::connection_hdl;
 
 constexpr std::size_t kMaxSnapshotKeys = 1024;
@@ -43,6 +49,66 @@ using Clock = std::chrono::steady_clock;
 
 std::string json_reply(const json& j) { return j.dump(); }
 
+// The newest OpenSSL error as text ("" when there is none); clears the queue.
+std::string openssl_error() {
+  unsigned long e = 0, last = 0;
+  while ((e = ERR_get_error()) != 0) last = e;
+  if (last == 0) return "";
+  char buf[256];
+  ERR_error_string_n(last, buf, sizeof buf);
+  return buf;
+}
+
+// The file can be opened for reading: the message names the file and errno,
+// clearer than OpenSSL's "system lib" error for a missing file.
+void check_readable(const std::filesystem::path& file, const char* what) {
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) throw std::runtime_error(std::string(what) + " " + file.string() + ": " + std::strerror(errno));
+  std::fclose(f);
+}
+
+// One TLS context for every connection: certificate chain and key loaded
+// and matched once at start, so that a bad file stops advee-web at once
+// instead of failing every handshake later. TLS 1.2 at least (1.0 and 1.1
+// are deprecated, RFC 8996), no compression (CRIME), the server's cipher
+// order, TLS 1.2 ciphers only with forward secrecy and AEAD (TLS 1.3's are
+// all such); no stateless session tickets, so no ticket key lives for the
+// process's whole life (resumption uses the in-memory session cache).
+std::shared_ptr<asio::ssl::context> make_tls_context(const std::filesystem::path& cert,
+                                                     const std::filesystem::path& key) {
+  check_readable(cert, "TLS certificate");
+  check_readable(key, "TLS key");
+  auto ctx = std::make_shared<asio::ssl::context>(asio::ssl::context::tls_server);
+  SSL_CTX* native = ctx->native_handle();
+  ctx->set_options(asio::ssl::context::default_workarounds | asio::ssl::context::no_compression |
+                   asio::ssl::context::single_dh_use);
+  SSL_CTX_set_options(native, SSL_OP_CIPHER_SERVER_PREFERENCE | SSL_OP_NO_TICKET | SSL_OP_NO_RENEGOTIATION);
+  if (SSL_CTX_set_min_proto_version(native, TLS1_2_VERSION) != 1)
+    throw std::runtime_error("TLS: cannot require TLS 1.2: " + openssl_error());
+  if (SSL_CTX_set_cipher_list(native,
+                              "ECDHE-ECDSA-AES128-GCM-SHA256:ECDHE-RSA-AES128-GCM-SHA256:"
+                              "ECDHE-ECDSA-AES256-GCM-SHA384:ECDHE-RSA-AES256-GCM-SHA384:"
+                              "ECDHE-ECDSA-CHACHA20-POLY1305:ECDHE-RSA-CHACHA20-POLY1305") != 1)
+    throw std::runtime_error("TLS: cipher list refused: " + openssl_error());
+  // An encrypted key would make OpenSSL ask for its passphrase on the
+  // terminal (a service has none): an empty passphrase fails it instead.
+  ctx->set_password_callback([](std::size_t, asio::ssl::context::password_purpose) { return std::string(); });
+  std::error_code ec;
+  ctx->use_certificate_chain_file(cert.string(), ec);
+  if (ec)
+    throw std::runtime_error("TLS certificate " + cert.string() + ": not a PEM certificate (" + ec.message() + ")");
+  ctx->use_private_key_file(key.string(), asio::ssl::context::pem, ec);
+  // OpenSSL compares the key with the certificate already here.
+  const bool mismatch = ec && ec.category() == asio::error::get_ssl_category() &&
+                        ERR_GET_REASON(static_cast<unsigned long>(ec.value())) == X509_R_KEY_VALUES_MISMATCH;
+  if (ec && !mismatch)
+    throw std::runtime_error("TLS key " + key.string() + ": not an unencrypted PEM private key (" + ec.message() +
+                             ")");
+  if (mismatch || SSL_CTX_check_private_key(native) != 1)
+    throw std::runtime_error("TLS key " + key.string() + " does not belong to the certificate " + cert.string());
+  return ctx;
+}
+
 std::int64_t utime_now() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
              std::chrono::system_clock::now().time_since_epoch())
@@ -50,7 +116,25 @@ std::int64_t utime_now() {
 }
 }  // namespace
 
+// What BridgeServer needs of its server, whichever transport it has.
 struct BridgeServer::Impl {
+  virtual ~Impl() = default;
+  virtual void start() = 0;
+  virtual void broadcast(const std::string& key, const std::string& payload, bool keep) = 0;
+  virtual void shutdown() = 0;
+  virtual BridgeStats stats() const = 0;
+  virtual std::uint16_t port() const = 0;
+};
+
+// The server over plain TCP (websocketpp::config::asio) or over TLS
+// (config::asio_tls): the same code, only the socket differs.
+template <class Config>
+struct BridgeServer::ImplT final : BridgeServer::Impl {
+  using Server = websocketpp::server<Config>;
+  using connection_ptr = typename Server::connection_ptr;
+  using message_ptr = typename Server::message_ptr;
+  static constexpr bool kTls = std::is_same_v<Config, websocketpp::config::asio_tls>;
+
   struct Client {
     ClientQueue queue;
     std::string token;    // the session cookie sent with the upgrade ("" = none)
@@ -80,7 +164,9 @@ struct BridgeServer::Impl {
   int flushes = 0;
   bool stopping = false;
 
-  Impl(asio::io_context& io_, BridgeOptions o, Log l, Control c)
+  std::shared_ptr<asio::ssl::context> tls;  // with TLS only
+
+  ImplT(asio::io_context& io_, BridgeOptions o, Log l, Control c)
       : io(io_),
         opt(std::move(o)),
         log(std::move(l)),
@@ -88,6 +174,10 @@ struct BridgeServer::Impl {
         flush_timer(io_),
         history(opt.history_s, opt.history_max) {
     init_crypto();
+    if constexpr (kTls) {
+      tls = make_tls_context(opt.tls_cert, opt.tls_key);
+      opt.secure_cookie = true;  // the page is served over https: the cookie never goes out in clear
+    }
     if (!opt.password_file.empty()) {
       const auto n = PasswordFile::load(opt.password_file).size();
       log(opt.password_file.string() + ": " + std::to_string(n) + " operator(s)" +
@@ -95,19 +185,20 @@ struct BridgeServer::Impl {
     }
   }
 
-  void start() {
+  void start() override {
     server.clear_access_channels(websocketpp::log::alevel::all);
     server.clear_error_channels(websocketpp::log::elevel::all);
     std::error_code ec;
     server.init_asio(&io, ec);
     if (ec) throw std::runtime_error("cannot set up the server: " + ec.message());
     server.set_reuse_addr(true);
+    if constexpr (kTls) server.set_tls_init_handler([this](Hdl) { return tls; });
     server.set_http_handler([this](Hdl h) { on_http(h); });
     server.set_open_handler([this](Hdl h) { on_open(h); });
     server.set_close_handler([this](Hdl h) { on_close(h); });
     server.set_fail_handler([this](Hdl h) { on_fail(h); });
     server.set_validate_handler([this](Hdl h) { return on_validate(h); });
-    server.set_message_handler([this](Hdl h, Server::message_ptr m) { on_message(h, m); });
+    server.set_message_handler([this](Hdl h, message_ptr m) { on_message(h, m); });
     server.set_max_message_size(opt.max_message_bytes);
     server.set_max_http_body_size(kMaxHttpBody);
 
@@ -143,7 +234,7 @@ struct BridgeServer::Impl {
     if (method == "POST" && (target == "/login" || target == "/logout")) {
       con->append_header("Content-Type", "application/json");
       if (!origin_allowed(con->get_request_header("Origin"), con->get_request_header("Host"),
-                          opt.allowed_origins)) {
+                          opt.allowed_origins, kTls)) {
         con->set_body(json_reply({{"error", "wrong or missing Origin"}}));
         con->set_status(websocketpp::http::status_code::forbidden);
         return;
@@ -190,7 +281,7 @@ struct BridgeServer::Impl {
     con->set_status(websocketpp::http::status_code::ok);
   }
 
-  static std::string peer_address(const Server::connection_ptr& con) {
+  static std::string peer_address(const connection_ptr& con) {
     std::error_code ec;
     const auto ep = con->get_raw_socket().remote_endpoint(ec);
     if (ec) return "?";
@@ -201,7 +292,7 @@ struct BridgeServer::Impl {
 
   // POST /login {"user":..,"password":..}: 200 + the cookie, 401, 429 (rate
   // limit, Retry-After), 400, 503 (too many checks at once).
-  void on_login(const Server::connection_ptr& con) {
+  void on_login(const connection_ptr& con) {
     const std::string address = peer_address(con);
     const auto wait = limiter.retry_after(address);
     if (wait > Clock::duration::zero()) {
@@ -240,7 +331,7 @@ struct BridgeServer::Impl {
     });
   }
 
-  void finish_login(const Server::connection_ptr& con, const std::string& address, const std::string& user,
+  void finish_login(const connection_ptr& con, const std::string& address, const std::string& user,
                     bool ok, const std::string& problem) {
     --logins_in_flight;
     if (stopping) return;
@@ -261,7 +352,7 @@ struct BridgeServer::Impl {
     con->send_http_response(ec);
   }
 
-  void on_logout(const Server::connection_ptr& con) {
+  void on_logout(const connection_ptr& con) {
     const auto token = session_cookie_value(con->get_request_header("Cookie"));
     const auto user = sessions.user(token);
     sessions.revoke(token);
@@ -281,7 +372,7 @@ struct BridgeServer::Impl {
     auto con = server.get_con_from_hdl(h, ec);
     if (ec || stopping) return false;
     if (!origin_allowed(con->get_request_header("Origin"), con->get_request_header("Host"),
-                        opt.allowed_origins)) {
+                        opt.allowed_origins, kTls)) {
       log("WebSocket refused for " + peer_address(con) + ": Origin '" + con->get_request_header("Origin") + "'");
       con->set_status(websocketpp::http::status_code::forbidden);
       return false;
@@ -347,7 +438,7 @@ struct BridgeServer::Impl {
     send_to(h, {{"channel", "WEB_CONTROL"}, {"ok", false}, {"error", why}});
   }
 
-  void on_message(Hdl h, const Server::message_ptr& m) {
+  void on_message(Hdl h, const message_ptr& m) {
     const auto it = clients.find(h);
     if (it == clients.end() || stopping) return;
     Client& client = it->second;
@@ -434,7 +525,9 @@ struct BridgeServer::Impl {
   void on_fail(Hdl h) {
     std::error_code ec;
     auto con = server.get_con_from_hdl(h, ec);
-    if (!ec && !stopping) log("connection failed: " + con->get_ec().message());
+    // With TLS: also every plain-HTTP request and every client that does not
+    // trust the certificate ("TLS handshake failed").
+    if (!ec && !stopping) log("connection from " + peer_address(con) + " failed: " + con->get_ec().message());
     forget(h);
   }
 
@@ -471,7 +564,7 @@ struct BridgeServer::Impl {
     for (auto& [hdl, client] : clients) send_status(hdl, client);
   }
 
-  void broadcast(const std::string& key, const std::string& payload, bool keep) {
+  void broadcast(const std::string& key, const std::string& payload, bool keep) override {
     if (stopping) return;
     ++messages;
     if (keep)
@@ -484,7 +577,7 @@ struct BridgeServer::Impl {
     }
   }
 
-  void shutdown() {
+  void shutdown() override {
     if (stopping) return;
     if (holder) drop_lease("advee-web stops");
     stopping = true;
@@ -498,10 +591,34 @@ struct BridgeServer::Impl {
     }
     clients.clear();
   }
+
+  BridgeStats stats() const override {
+    BridgeStats s;
+    s.clients = clients.size();
+    s.messages = messages;
+    s.dropped = dropped_closed;
+    s.refused = refused;
+    for (const auto& [hdl, client] : clients) s.dropped += client.queue.dropped();
+    return s;
+  }
+
+  std::uint16_t port() const override {
+    std::error_code ec;
+    // get_local_endpoint is not const in websocketpp.
+    const auto ep = const_cast<Server&>(server).get_local_endpoint(ec);
+    return ec ? 0 : ep.port();
+  }
 };
 
-BridgeServer::BridgeServer(asio::io_context& io, BridgeOptions options, Log log, Control control)
-    : impl_(std::make_unique<Impl>(io, std::move(options), std::move(log), std::move(control))) {
+BridgeServer::BridgeServer(asio::io_context& io, BridgeOptions options, Log log, Control control) {
+  if (options.tls_cert.empty() != options.tls_key.empty())
+    throw std::runtime_error("TLS needs both a certificate and a key");
+  if (options.tls_cert.empty())
+    impl_ = std::make_unique<ImplT<websocketpp::config::asio>>(io, std::move(options), std::move(log),
+                                                                std::move(control));
+  else
+    impl_ = std::make_unique<ImplT<websocketpp::config::asio_tls>>(io, std::move(options), std::move(log),
+                                                                    std::move(control));
   impl_->start();
 }
 
@@ -515,20 +632,8 @@ void BridgeServer::broadcast(const std::string& key, const std::string& payload,
 
 void BridgeServer::shutdown() { impl_->shutdown(); }
 
-BridgeStats BridgeServer::stats() const {
-  BridgeStats s;
-  s.clients = impl_->clients.size();
-  s.messages = impl_->messages;
-  s.dropped = impl_->dropped_closed;
-  s.refused = impl_->refused;
-  for (const auto& [hdl, client] : impl_->clients) s.dropped += client.queue.dropped();
-  return s;
-}
+BridgeStats BridgeServer::stats() const { return impl_->stats(); }
 
-std::uint16_t BridgeServer::port() const {
-  std::error_code ec;
-  const auto ep = impl_->server.get_local_endpoint(ec);
-  return ec ? 0 : ep.port();
-}
+std::uint16_t BridgeServer::port() const { return impl_->port(); }
 
 }  // namespace advee::web

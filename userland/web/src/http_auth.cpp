@@ -28,9 +28,10 @@ std::string session_set_cookie(const std::string& token, bool secure) { return c
 
 std::string session_clear_cookie(bool secure) { return cookie("", secure, "; Max-Age=0"); }
 
-bool origin_allowed(const std::string& origin, const std::string& host, const std::vector<std::string>& extra) {
+bool origin_allowed(const std::string& origin, const std::string& host, const std::vector<std::string>& extra,
+                    bool tls) {
   if (origin.empty()) return false;
-  if (!host.empty() && (origin == "http://" + host || origin == "https://" + host)) return true;
+  if (!host.empty() && ((!tls && origin == "http://" + host) || origin == "https://" + host)) return true;
   return std::find(extra.begin(), extra.end(), origin) != extra.end();
 }
 

@@ -132,6 +132,10 @@ TEST(HttpAuth, Origin) {
   EXPECT_FALSE(origin_allowed("null", "robot:8080", {}));
   EXPECT_FALSE(origin_allowed("http://", "", {}));
   EXPECT_TRUE(origin_allowed("https://proxy", "robot:8080", {"https://proxy"}));
+  // advee-web itself on TLS: only the https page of that host and port.
+  EXPECT_TRUE(origin_allowed("https://robot:8443", "robot:8443", {}, true));
+  EXPECT_FALSE(origin_allowed("http://robot:8443", "robot:8443", {}, true));
+  EXPECT_TRUE(origin_allowed("http://proxy", "robot:8443", {"http://proxy"}, true));
 }
 
 }  // namespace

@@ -11,7 +11,9 @@
 # tests/browser/dashboard-test.mjs drives the page in real browsers
 # (puppeteer-core, installed by scripts/deps.sh): login, control, the lease,
 # the refusals, fuzz, the phone layout, with what reaches LCM read by
-# advee-stack-listen. Keeps the screenshots and the DOM under build/web/. One
+# advee-stack-listen. Then the same bridge over TLS (a self-signed
+# certificate made for the run): one login and drive over https and wss
+# (tests/browser/tls-test.mjs). Keeps the screenshots and the DOM under build/web/. One
 # TSV row per check in build/results/web.tsv (name, passed, failed, skipped,
 # status, note) for scripts/check.sh; the measured figures in
 # build/web/figures.txt.
@@ -188,5 +190,73 @@ if [ "$rc" = 0 ] && grep -Eqx 'advee-web: stopped: [0-9]+ messages, [0-9]+ dropp
 	row "SIGTERM: advee-web exits 0" ok
 else
 	row "SIGTERM: advee-web exits 0" fail "exit $rc"
+fi
+
+# The same over TLS: a second advee-web with a throw-away self-signed
+# certificate for this run (EC P-256, 127.0.0.1 in its subjectAltName), and
+# one login + drive in Chromium over https and wss (tls-test.mjs). Chromium
+# trusts exactly that certificate: the SHA-256 of its public key goes to
+# --ignore-certificate-errors-spki-list.
+TLS=$OUT/tls
+rm -rf "$TLS"
+mkdir -p "$TLS"
+if ! openssl req -x509 -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -days 2 -subj /CN=127.0.0.1 \
+	-addext subjectAltName=IP:127.0.0.1 -keyout "$TLS/key.pem" -out "$TLS/cert.pem" 2>"$TLS/openssl.log"; then
+	row "https: a self-signed certificate for the run" fail "$(tail -1 "$TLS/openssl.log")"
+	exit 1
+fi
+spki=$(openssl x509 -in "$TLS/cert.pem" -pubkey -noout | openssl pkey -pubin -outform der |
+	openssl dgst -sha256 -binary | base64)
+: >"$OUT/advee-web-tls.log"
+"$WEB" --listen 127.0.0.1:0 --root "$TOP/userland/web/static" --operators "$OPS" --robot "" --map "" \
+	--tls-cert "$TLS/cert.pem" --tls-key "$TLS/key.pem" 2>>"$OUT/advee-web-tls.log" &
+WEB_PID=$!
+PIDS="$PIDS $WEB_PID"
+port=
+for _ in $(seq 50); do
+	port=$(sed -n 's|.* on https://127.0.0.1:\([0-9]*\)/$|\1|p' "$OUT/advee-web-tls.log")
+	[ -n "$port" ] && break
+	sleep 0.1
+done
+if [ -z "$port" ]; then
+	row "https: advee-web --tls-cert starts and listens" fail "$(tail -1 "$OUT/advee-web-tls.log")"
+	exit 1
+fi
+row "https: advee-web --tls-cert starts and listens" ok
+if [ -d "$NODE_TESTS/node_modules/puppeteer-core" ]; then
+	WEB_URL=https://127.0.0.1:$port/ SPKI=$spki LISTEN=$LISTEN CHROMIUM=$CHROMIUM OP1=$OP1 PW1=$PW1 \
+		timeout 120 node "$NODE_TESTS/tls-test.mjs" >"$OUT/browser-tls-test.out" 2>"$OUT/browser-tls-test.err"
+	rc=$?
+	while IFS=$'\t' read -r kind a b c; do
+		case $kind in
+		ROW) row "$b" "$a" "$c" ;;
+		FIGURE) printf '%s: %s\n' "$a" "$b" | tee -a "$OUT/figures.txt" ;;
+		esac
+	done <"$OUT/browser-tls-test.out"
+	if [ "$rc" != 0 ] && ! grep -q '^ROW	fail' "$OUT/browser-tls-test.out"; then
+		row "https real-browser test ran" fail "exit $rc: $(tail -3 "$OUT/browser-tls-test.err" | tr '\n' ' ')"
+	fi
+fi
+# Plain HTTP to the TLS port gets no HTTP answer (at most a TLS alert), and
+# the connection is closed.
+# The server may close before the request is all written: no SIGPIPE then
+# (a run ended with 141), the reply is read all the same.
+(trap '' PIPE; exec 3<>"/dev/tcp/127.0.0.1/$port" || exit 2
+	printf 'GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n' >&3 2>/dev/null
+	timeout 5 cat <&3 >"$TLS/plain-reply" 2>/dev/null)
+rc=$?	# 0: closed by the server, 1: reset, 2: no connection, 124: left open
+if [ "$rc" -le 1 ] && [ -f "$TLS/plain-reply" ] && ! grep -q "HTTP/" "$TLS/plain-reply"; then
+	row "https: plain HTTP to the TLS port gets no HTTP answer and is closed" ok
+else
+	row "https: plain HTTP to the TLS port gets no HTTP answer and is closed" fail "exit $rc, $(head -c 80 "$TLS/plain-reply")"
+fi
+kill -TERM "$WEB_PID"
+wait "$WEB_PID"
+rc=$?
+PIDS=${PIDS/ $WEB_PID/}
+if [ "$rc" = 0 ] && ! grep -qF -e "$PW1" -e "$PW2" "$OUT/advee-web-tls.log"; then
+	row "https: SIGTERM exits 0, no password in the log" ok
+else
+	row "https: SIGTERM exits 0, no password in the log" fail "exit $rc"
 fi
 exit $failed

@@ -123,7 +123,8 @@ int main(int argc, char** argv) {
       "{\"channel\":..,\"utime\":..,<fields>} and pushes it to every WebSocket client;\n"
       "serves the dashboard page (--root) and /scene.json (the robot outline, sensor\n"
       "positions and room from robot-sim's --robot and --map files) over HTTP on the\n"
-      "same port. Open http://HOST:PORT/ in a browser.\n\n"
+      "same port. Open http://HOST:PORT/ in a browser; with --tls-cert and --tls-key\n"
+      "the port speaks only HTTPS and WSS (TLS 1.2 or 1.3): open https://HOST:PORT/.\n\n"
       "The bridge integrates LL_DATA_ODO itself (from the robot file's start pose) and\n"
       "sends the estimate as WEB_ODO_POSE {x_m, y_m, heading_rad}. A page that connects\n"
       "gets the newest message of every channel first, then the last 120 s of poses,\n"
@@ -135,8 +136,10 @@ int main(int argc, char** argv) {
       "with a password from --operators (set one with `advee-web passwd NAME`) and\n"
       "the control lease; docs/web-dashboard.md describes the security model.\n\n"
       "Signals: SIGINT, SIGTERM close every connection and exit 0.\n"
-      "Exit codes: 0 stopped by a signal, 1 LCM or the listening socket could not be set\n"
-      "up or LCM failed while running, 2 bad command line.",
+      "Exit codes: 0 stopped by a signal, 1 LCM, the listening socket or TLS could not be\n"
+      "set up (a certificate or key missing, unreadable, not PEM, encrypted, or the key\n"
+      "not the certificate's) or LCM failed while running, 2 bad command line (also\n"
+      "--tls-cert without --tls-key or the reverse).",
       "advee-web"};
   std::string listen = "127.0.0.1:8080";
   std::string root = ADVEE_WEB_DATADIR;
@@ -149,8 +152,16 @@ int main(int argc, char** argv) {
   std::vector<std::string> allow_origins;
   double max_speed = 0.5, max_steering_deg = 30;
   bool secure_cookie = false;
+  std::string tls_cert, tls_key;
   app.add_flag("--secure-cookie", secure_cookie, "the page is reached over https (a TLS proxy in front): "
-                                                 "the session cookie gets Secure");
+                                                 "the session cookie gets Secure (implied by --tls-cert)");
+  auto* cert_opt = app.add_option("--tls-cert", tls_cert, "PEM certificate (chain, the server's first): serve "
+                                                          "HTTPS and WSS instead of HTTP and WS; the session "
+                                                          "cookie gets Secure, only the https Origin is the page's");
+  auto* key_opt = app.add_option("--tls-key", tls_key, "the certificate's PEM private key, unencrypted "
+                                                       "(mode 0640 root:advee); both read once at start");
+  cert_opt->type_name("FILE")->needs(key_opt);
+  key_opt->type_name("FILE")->needs(cert_opt);
   app.add_option("--operators", operators, "the operators' password file (NAME:crypto_pwhash "
                                            "hash, mode 0640 root:advee; advee-web passwd sets it)")
       ->capture_default_str();
@@ -173,7 +184,7 @@ int main(int argc, char** argv) {
   pw_cmd->add_option("name", pw_name, "operator name: 1-32 of A-Z a-z 0-9 _ . -")->required();
   pw_cmd->add_flag("--delete", pw_delete, "remove the operator instead");
   pw_cmd->add_flag("--random", pw_random, "generate a random password and print it on stdout");
-  app.add_option("--listen", listen, "HOST:PORT for HTTP and WebSocket; 0.0.0.0:PORT for every "
+  app.add_option("--listen", listen, "HOST:PORT for HTTP(S) and WebSocket; 0.0.0.0:PORT for every "
                                      "interface (a VM's port forwarding needs that); PORT 0 picks a free "
                                      "port and prints it")
       ->capture_default_str();
@@ -206,7 +217,9 @@ int main(int argc, char** argv) {
   opt.password_file = operators;
   opt.view_requires_login = view == "login";
   opt.allowed_origins = allow_origins;
-  opt.secure_cookie = secure_cookie;
+  opt.secure_cookie = secure_cookie;  // the server adds it by itself with TLS
+  opt.tls_cert = tls_cert;
+  opt.tls_key = tls_key;
   opt.drive_limits = {max_speed, max_steering_deg * 3.14159265358979323846 / 180};
   const auto scene = advee::web::load_scene(robot_file, map_file);
   if (scene.contains("errors"))
@@ -249,7 +262,8 @@ int main(int argc, char** argv) {
     log_line(e.what());
     return 1;
   }
-  log_line("serving " + root + " on http://" + opt.address + ":" + std::to_string(server->port()) + "/");
+  log_line("serving " + root + " on " + (tls_cert.empty() ? "http" : "https") + "://" + opt.address + ":" +
+           std::to_string(server->port()) + "/");
 
   int status = 0;
   asio::steady_timer grace(io), health(io);

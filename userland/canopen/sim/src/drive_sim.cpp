@@ -52,8 +52,10 @@ void SimulatedDrive::build_dictionary() {
     throw std::runtime_error(msg);
   }
   od_ = std::move(r.description->od);
-  // Per simulated instance (where homing puts the position), not per device type.
+  // Per simulated instance (where homing puts the position, which serial
+  // number tells it from others of its type for LSS), not per device type.
   od_.set<std::int32_t>(0x607C, 0, cfg_.home_offset);
+  if (cfg_.serial) od_.set<std::uint32_t>(0x1018, 4, cfg_.serial);
 }
 
 void SimulatedDrive::install_validators() {

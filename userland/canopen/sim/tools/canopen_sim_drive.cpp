@@ -3,6 +3,8 @@
 // (vcan in the tests), as its own process. Fault injection at start-up by
 // option, at run time by signal: SIGUSR1 = EMCY 0x4210 + fault, SIGUSR2 =
 // heartbeat silence on/off. Prints one line per state change on stdout.
+// An LSS slave (CiA 305) sits in front of the drive: with --unconfigured it
+// has no node-ID and answers LSS only until a master gives it one.
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
@@ -14,6 +16,7 @@
 #include "advee/canopen/event_loop.hpp"
 #include "advee/canopen/runtime.hpp"
 #include "advee/canopen/sim/drive_sim.hpp"
+#include "advee/canopen/sim/lss_slave.hpp"
 #include "advee/cli.hpp"
 
 using namespace advee::canopen;
@@ -22,7 +25,8 @@ int main(int argc, char** argv) {
   CLI::App app{"canopen-sim-drive: one simulated CiA 402 drive (EPOS or IclA profile) on a SocketCAN\n"
                "interface, as its own process. Prints one line per NMT or CiA 402 state change.\n"
                "Signals: SIGUSR1 injects EMCY 0x4210 and a fault, SIGUSR2 toggles heartbeat silence,\n"
-               "SIGINT and SIGTERM end it.\n"
+               "SIGINT and SIGTERM end it. An LSS slave (CiA 305, identity = 0x1018) answers on 0x7E5;\n"
+               "with --unconfigured the drive has no node-ID and boots when an LSS master gives it one.\n"
                "Exit status: 0 ended by a signal, 1 the CAN interface failed, 2 bad command line or --eds file.",
                "canopen-sim-drive"};
   std::string ifname = "vcan0";
@@ -35,6 +39,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> abort_specs;
   app.add_option("-i,--interface", ifname, "CAN interface")->capture_default_str();
   app.add_option("-n,--node", node, "node-ID")->check(CLI::Range(1u, 127u))->capture_default_str();
+  bool unconfigured = false;
+  app.add_flag("--unconfigured", unconfigured, "no node-ID (0xFF) until an LSS master configures one; --node is ignored");
+  app.add_option("--serial", cfg.serial, "serial number in 0x1018:4, part of the LSS address (default: the node-ID)");
   app.add_option("-p,--profile", profile, "object dictionary and PDO defaults")
       ->check(CLI::IsMember({"epos", "icla"}))
       ->capture_default_str();
@@ -76,16 +83,29 @@ int main(int argc, char** argv) {
 
   try {
     EventLoop loop;
-    std::unique_ptr<sim::SimulatedDrive> drive;
-    CanPort port(loop, CanSocket::open(ifname), [&drive](const CanFrame& f) { drive->handle(f); });
-    drive = std::make_unique<sim::SimulatedDrive>(cfg, port.sender(), system_monotonic_clock());
-    drive->faults() = faults;
-    drive->sdo().faults().response_delay = std::chrono::milliseconds(sdo_delay_ms);
-    drive->sdo().faults().abort_on = aborts;
-
-    auto state = drive->state();
-    auto nmt = drive->nmt_state();
+    std::unique_ptr<sim::LssSimNode> lss_node;
+    CanPort port(loop, CanSocket::open(ifname), [&lss_node](const CanFrame& f) { lss_node->handle(f); });
+    lss_node = std::make_unique<sim::LssSimNode>(cfg, unconfigured ? kLssUnconfigured : cfg.node, port.sender(),
+                                                 system_monotonic_clock());
+    // The drive exists while the node has a node-ID; LSS may build it anew.
+    sim::SimulatedDrive* drive = nullptr;
+    auto state = cia402::State::kNotReadyToSwitchOn;
+    auto nmt = NmtState::kBootUp;
+    lss_node->set_on_start([&](std::uint8_t id) {
+      drive = lss_node->drive();
+      if (!drive) {
+        std::printf("node %u unconfigured\n", cfg.node);
+        return;
+      }
+      cfg.node = id;
+      drive->faults() = faults;
+      drive->sdo().faults().response_delay = std::chrono::milliseconds(sdo_delay_ms);
+      drive->sdo().faults().abort_on = aborts;
+      std::printf("node %u boot\n", id);
+      nmt = NmtState::kBootUp;
+    });
     auto report = [&] {
+      if (!drive) return;
       if (drive->nmt_state() != nmt) {
         nmt = drive->nmt_state();
         std::printf("node %u nmt %s\n", cfg.node, std::string(to_string(nmt)).c_str());
@@ -95,12 +115,13 @@ int main(int argc, char** argv) {
         std::printf("node %u state %s\n", cfg.node, std::string(cia402::to_string(state)).c_str());
       }
     };
-    loop.add_timer_source([&] { return drive->deadline(); },
+    loop.add_timer_source([&] { return lss_node->deadline(); },
                           [&] {
-                            drive->poll();
+                            lss_node->poll();
                             report();
                           });
     SignalHandler signals(loop, {SIGINT, SIGTERM, SIGUSR1, SIGUSR2}, [&](int sig) {
+      if (sig != SIGINT && sig != SIGTERM && !drive) return;
       if (sig == SIGUSR1) {
         std::printf("node %u inject EMCY 0x4210\n", cfg.node);
         drive->inject_fault(0x4210);
@@ -111,10 +132,19 @@ int main(int argc, char** argv) {
         loop.stop();
       }
     });
-    drive->power_on();
-    std::printf("node %u ready on %s (%s)\n", cfg.node, ifname.c_str(),
-                cfg.profile == sim::DriveProfile::kEpos ? "epos" : "icla");
+    lss_node->power_on();
+    const auto& id = lss_node->lss().address();
+    if (unconfigured)
+      std::printf("node unconfigured ready on %s (%s, serial 0x%08X)\n", ifname.c_str(),
+                  cfg.profile == sim::DriveProfile::kEpos ? "epos" : "icla", id.serial());
+    else
+      std::printf("node %u ready on %s (%s)\n", cfg.node, ifname.c_str(),
+                  cfg.profile == sim::DriveProfile::kEpos ? "epos" : "icla");
     loop.run();
+    if (!drive) {
+      std::printf("node unconfigured exit\n");
+      return 0;
+    }
     std::printf("node %u exit: %llu RPDOs in, %llu TPDOs out, %llu SDO requests\n", cfg.node,
                 static_cast<unsigned long long>(drive->rpdos_received()),
                 static_cast<unsigned long long>(drive->tpdos_sent()),

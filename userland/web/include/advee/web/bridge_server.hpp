@@ -43,8 +43,14 @@ struct BridgeOptions {
   bool view_requires_login = false;
   // Origins accepted besides the page's own (http(s)://Host).
   std::vector<std::string> allowed_origins;
-  // The session cookie gets Secure (set when the page is served over TLS).
+  // The session cookie gets Secure: the page is reached over https through a
+  // TLS proxy in front (with tls_cert the bridge sets it itself).
   bool secure_cookie = false;
+  // HTTPS and WSS on the port instead of HTTP and WS: the PEM certificate
+  // (chain, the server's first) and its unencrypted PEM private key; both or
+  // neither. The constructor throws std::runtime_error naming the file when
+  // one cannot be read or parsed, or when the key is not the certificate's.
+  std::filesystem::path tls_cert, tls_key;
   DriveLimits drive_limits;
   // The lease holder's drive commands stopping for this long while it drives
   // (a page that hangs without closing) makes the bridge send the stop.
@@ -73,7 +79,8 @@ class BridgeServer {
   // the io_context's thread. The bridge sends a stop by itself when the lease
   // holder goes (disconnect, logout, take-over) or its drive commands stop.
   using Control = std::function<void(const ControlRequest&, const Operator&, bool audit)>;
-  // Listens at once; throws std::runtime_error (address in use, bad address).
+  // Listens at once; throws std::runtime_error (address in use, bad address,
+  // TLS files).
   // Reads options.password_file (throws std::runtime_error naming a bad line).
   BridgeServer(asio::io_context& io, BridgeOptions options, Log log, Control control = nullptr);
   ~BridgeServer();
@@ -93,7 +100,9 @@ class BridgeServer {
   std::uint16_t port() const;
 
  private:
-  struct Impl;
+  struct Impl;  // the interface below
+  template <class Config>
+  struct ImplT;  // the server over plain TCP or TLS (websocketpp config)
   std::unique_ptr<Impl> impl_;
 };
 

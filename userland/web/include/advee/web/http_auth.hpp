@@ -24,8 +24,11 @@ std::string session_clear_cookie(bool secure);
 // A browser's request comes from our own page when its Origin is
 // http(s)://HOST with HOST the Host header it sent, or one of `extra`
 // (--allow-origin, e.g. a reverse proxy's name). An absent Origin is refused:
-// every browser sends one on WebSocket upgrades and POSTs.
+// every browser sends one on WebSocket upgrades and POSTs. With `tls` (the
+// bridge itself speaks TLS) only https://HOST is our own page: nothing on
+// that port is served over plain http, so an http:// Origin with that host
+// and port is not ours.
 bool origin_allowed(const std::string& origin, const std::string& host,
-                    const std::vector<std::string>& extra);
+                    const std::vector<std::string>& extra, bool tls = false);
 
 }  // namespace advee::web

@@ -48,6 +48,7 @@ struct DriveSimConfig {
   // position counter is re-referenced.
   std::optional<double> home_switch_travel = std::nullopt;
   std::int32_t home_offset = 0;  // 0x607C at power-on: the position homing sets at the switch (replaces the EDS's)
+  std::uint32_t serial = 0;  // 0x1018:4, serial number; 0: the EDS's ($NODEID, the node-ID)
   Duration step = std::chrono::milliseconds(1);
   // The device description (EDS) the dictionary is built from; empty: the
   // profile's shipped one (data/*.eds, built in: shipped_eds()). The
