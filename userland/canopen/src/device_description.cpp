@@ -135,8 +135,9 @@ class Parser {
     return it == by_name_.end() ? nullptr : &sections_[it->second];
   }
   DeviceDescription::Section plain(std::string_view name) const;
-  std::vector<std::uint16_t> object_list(std::string_view name);
-  void object(std::uint16_t index);
+  // (index, line of its list entry)
+  std::vector<std::pair<std::uint16_t, unsigned>> object_list(std::string_view name);
+  void object(std::uint16_t index, unsigned listed_at);
   std::optional<OdEntry> entry(const IniSection& s, const IniSection* type_from, std::string name_fallback);
   std::optional<std::vector<std::uint8_t>> evaluate(const Key& k, const TypeInfo& t);
 
@@ -203,8 +204,8 @@ DeviceDescription::Section Parser::plain(std::string_view name) const {
   return out;
 }
 
-std::vector<std::uint16_t> Parser::object_list(std::string_view name) {
-  std::vector<std::uint16_t> out;
+std::vector<std::pair<std::uint16_t, unsigned>> Parser::object_list(std::string_view name) {
+  std::vector<std::pair<std::uint16_t, unsigned>> out;
   const IniSection* s = section(name);
   if (!s) return out;
   const Key* count = s->find("SupportedObjects");
@@ -229,7 +230,7 @@ std::vector<std::uint16_t> Parser::object_list(std::string_view name) {
       error(k->line, "expected an object index 0x0001..0xFFFF, found '" + k->value + "'");
       continue;
     }
-    out.push_back(static_cast<std::uint16_t>(*idx));
+    out.emplace_back(static_cast<std::uint16_t>(*idx), k->line);
   }
   return out;
 }
@@ -393,12 +394,12 @@ std::optional<OdEntry> Parser::entry(const IniSection& s, const IniSection* type
   return e;
 }
 
-void Parser::object(std::uint16_t index) {
+void Parser::object(std::uint16_t index, unsigned listed_at) {
   char name[8];
   std::snprintf(name, sizeof name, "%04X", index);
   const IniSection* s = section(name);
   if (!s) {
-    error(0, "expected a section [" + std::string(name) + "] for object " + hex(index) + " of the object lists");
+    error(listed_at, "expected a section [" + std::string(name) + "] for object " + hex(index) + ", listed here");
     return;
   }
   OdObject obj;
@@ -498,7 +499,7 @@ DescriptionResult Parser::run(std::string_view text) {
       else d_.node_id = static_cast<std::uint8_t>(*n);
     }
   }
-  std::vector<std::uint16_t> all;
+  std::vector<std::pair<std::uint16_t, unsigned>> all;
   for (std::string_view list : {"MandatoryObjects", "OptionalObjects", "ManufacturerObjects"}) {
     const auto l = object_list(list);
     all.insert(all.end(), l.begin(), l.end());
@@ -507,11 +508,12 @@ DescriptionResult Parser::run(std::string_view text) {
     error(0, "expected objects: no [MandatoryObjects], [OptionalObjects] or [ManufacturerObjects] lists one");
   std::sort(all.begin(), all.end());
   for (std::size_t i = 0; i < all.size(); ++i) {
-    if (i && all[i] == all[i - 1]) {
-      error(0, "expected each object in one list once; " + hex(all[i]) + " is listed twice");
+    if (i && all[i].first == all[i - 1].first) {
+      error(all[i].second, "expected each object in one list once; " + hex(all[i].first) + " is also at line " +
+                               std::to_string(all[i - 1].second));
       continue;
     }
-    object(all[i]);
+    object(all[i].first, all[i].second);
   }
   DescriptionResult r;
   r.errors = std::move(errors_);

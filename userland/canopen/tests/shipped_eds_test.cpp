@@ -50,7 +50,7 @@ TEST(ShippedEdsTest, SimulatedDriveTakesItsDictionaryFromTheGivenFile) {
     SimulatedDrive bad(c, [](const CanFrame&) {}, [] { return TimePoint{}; });
     ADD_FAILURE() << "a bad description was accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(path + ":0: expected a section [1000]"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path + ":3: expected a section [1000]"), std::string::npos) << e.what();
   }
   std::remove(path.c_str());
 }
