@@ -27,6 +27,19 @@ std::string describe_need(PdoKind kind, unsigned n, const std::vector<PdoEntry>&
 }
 }  // namespace
 
+void take_pdos_from_device(DriveConfig& d, std::initializer_list<std::uint16_t> control,
+                           std::initializer_list<std::uint16_t> status) {
+  if (!d.device) return;
+  if (const PdoMapping* m = find_pdo(d.device->pdos, PdoKind::kRpdo, control)) {
+    d.control_rpdo = m->number;
+    d.control_entries = m->entries;
+  }
+  if (const PdoMapping* m = find_pdo(d.device->pdos, PdoKind::kTpdo, status)) {
+    d.status_tpdo = m->number;
+    d.status_entries = m->entries;
+  }
+}
+
 Drive402::Drive402(Master& master, DriveConfig cfg)
     : master_(master),
       cfg_(std::move(cfg)),
@@ -50,6 +63,7 @@ Drive402::Drive402(Master& master, DriveConfig cfg)
       // Whatever this boot wrote so far is gone: it fails, its pending
       // answers are dropped, and the owner boots again.
       boot_lifetime_.renew();
+      device_boot_.reset();  // its transfers' answers are dropped too
       boot_failed("drive rebooted during boot", make_error_code(AxisError::kCancelled));
     }
   });
@@ -103,6 +117,19 @@ void Drive402::boot(Done done) {
   booting_ = true;
   boot_lifetime_.renew();  // answers of an earlier boot are not this one's
   status_sub_.reset();
+  if (!cfg_.device) return boot_driver();
+  NodeBootConfig device = *cfg_.device;
+  device.node = cfg_.node;
+  device.name = cfg_.name;
+  device.start = false;  // the drive starts once its PDOs are checked below
+  device_boot_ = std::make_unique<NodeBoot>(master_, std::move(device));
+  device_boot_->boot(boot_lifetime_.wrap([this](std::error_code ec, const std::string&) {
+    if (ec) return boot_failed(device_boot_->reason(), ec);
+    boot_driver();
+  }));
+}
+
+void Drive402::boot_driver() {
   SdoClient& sdo = master_.sdo(cfg_.node);
   master_.nmt(NmtCommand::kEnterPreOperational, cfg_.node);
   std::vector<SdoWrite> hb;

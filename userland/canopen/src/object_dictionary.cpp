@@ -4,12 +4,21 @@
 namespace advee::canopen {
 
 void ObjectDictionary::add_string(std::uint16_t index, std::uint8_t sub, std::string_view s, Access a) {
-  entries_[{index, sub}] = OdEntry{std::vector<std::uint8_t>(s.begin(), s.end()), a, false, true};
+  OdEntry e;
+  e.value.assign(s.begin(), s.end());
+  e.access = a;
+  e.variable_size = true;
+  entries_[{index, sub}] = std::move(e);
 }
 
 bool ObjectDictionary::index_exists(std::uint16_t index) const {
   auto it = entries_.lower_bound({index, 0});
   return it != entries_.end() && it->first.first == index;
+}
+
+const OdObject* ObjectDictionary::object(std::uint16_t index) const {
+  auto it = objects_.find(index);
+  return it == objects_.end() ? nullptr : &it->second;
 }
 
 const OdEntry* ObjectDictionary::find(std::uint16_t index, std::uint8_t sub) const {

@@ -14,6 +14,7 @@
 #include <deque>
 #include <string>
 
+#include "advee/canopen/device_description.hpp"
 #include "advee/canopen/drivers/epos.hpp"
 #include "advee/canopen/drivers/icla.hpp"
 #include "advee/canopen/motion_watchdog.hpp"
@@ -128,11 +129,15 @@ void usage(FILE* out) {
       "  cmd-timeout  drive at 0.3 m/s for 1 s, stop commanding: the watchdog must quick stop\n"
       "  stream       drive at 0.3 m/s until killed (the drives must stop on their own)\n"
       "  capture      propulsion only: enable, 20 speed commands, quick stop, pre-operational\n"
+      "  dcf-refuse-icla  both drives boot from their descriptions (--epos-dcf, --icla-dcf): the IclA\n"
+      "               must be refused as another device, the EPOS boots and drives at 0.5 m/s\n"
       "options:\n"
       "  -i, --interface IF   CAN interface (default vcan0)\n"
       "      --epos ID        EPOS node-ID (default 1)\n"
       "      --icla ID        IclA node-ID (default 2)\n"
       "      --timeout S      give up after S seconds (default 30)\n"
+      "      --epos-dcf FILE  EDS/DCF of the EPOS: identity checked, configuration downloaded at boot\n"
+      "      --icla-dcf FILE  EDS/DCF of the IclA, the same\n"
       "  -h, --help\n",
       out);
 }
@@ -142,11 +147,14 @@ void usage(FILE* out) {
 int main(int argc, char** argv) {
   std::string ifname = "vcan0";
   int epos_node = 1, icla_node = 2, timeout_s = 30;
-  enum { kEpos = 256, kIcla, kTimeout };
+  std::string epos_dcf, icla_dcf;
+  enum { kEpos = 256, kIcla, kTimeout, kEposDcf, kIclaDcf };
   static const option opts[] = {{"interface", required_argument, nullptr, 'i'},
                                 {"epos", required_argument, nullptr, kEpos},
                                 {"icla", required_argument, nullptr, kIcla},
                                 {"timeout", required_argument, nullptr, kTimeout},
+                                {"epos-dcf", required_argument, nullptr, kEposDcf},
+                                {"icla-dcf", required_argument, nullptr, kIclaDcf},
                                 {"help", no_argument, nullptr, 'h'},
                                 {nullptr, 0, nullptr, 0}};
   for (int c; (c = getopt_long(argc, argv, "i:h", opts, nullptr)) != -1;) {
@@ -155,6 +163,8 @@ int main(int argc, char** argv) {
       case kEpos: epos_node = std::atoi(optarg); break;
       case kIcla: icla_node = std::atoi(optarg); break;
       case kTimeout: timeout_s = std::atoi(optarg); break;
+      case kEposDcf: epos_dcf = optarg; break;
+      case kIclaDcf: icla_dcf = optarg; break;
       case 'h': usage(stdout); return 0;
       default: usage(stderr); return 2;
     }
@@ -165,6 +175,17 @@ int main(int argc, char** argv) {
   }
   const std::string scenario = argv[optind];
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  // The descriptions are read before any I/O: a bad file is a usage error.
+  auto device = [](const std::string& path, int node, const char* name) -> std::optional<std::optional<NodeBootConfig>> {
+    if (path.empty()) return std::optional<NodeBootConfig>{};
+    const DescriptionResult r = load_device_description(path, static_cast<std::uint8_t>(node));
+    for (const auto& e : r.errors) std::fprintf(stderr, "canopen-scenario: %s\n", e.text().c_str());
+    if (!r.description) return std::nullopt;
+    return std::optional<NodeBootConfig>{boot_config_from_dcf(*r.description, name)};
+  };
+  const auto epos_device = device(epos_dcf, epos_node, "epos");
+  const auto icla_device = device(icla_dcf, icla_node, "icla");
+  if (!epos_device || !icla_device) return 2;
 
   int exit_code = 1;
   try {
@@ -177,10 +198,12 @@ int main(int argc, char** argv) {
 
     drivers::EposConfig ec;
     ec.node = static_cast<std::uint8_t>(epos_node);
+    ec.drive.device = *epos_device;
     drivers::EposDriver epos(master, ec);
     drivers::IclaConfig ic;
     ic.node = static_cast<std::uint8_t>(icla_node);
     ic.homing_speed = 4000;
+    ic.drive.device = *icla_device;
     drivers::IclaDriver icla(master, ic);
 
     double speed = 0;
@@ -323,6 +346,29 @@ int main(int argc, char** argv) {
             d({});
           })
           .wait(50ms);
+    } else if (scenario == "dcf-refuse-icla") {
+      script.then("IclA (node " + std::to_string(icla_node) + ") refused as another device", [&](auto d) {
+        icla.boot([&, d](std::error_code e) {
+          std::printf("# %s\n", icla.drive().boot_error().c_str());
+          d(check(e == make_error_code(BootError::kWrongDevice)));
+        });
+      });
+      boot_epos();
+      script.then("enable EPOS", [&](auto d) { epos.enable(d); })
+          .then("drive at 0.5 m/s", [&](auto d) {
+            drive_at(0.5);
+            d({});
+          })
+          .wait(1500ms)
+          .then("EPOS reports 0.5 m/s on TxPDO4", [&](auto d) {
+            const auto v = epos.speed();
+            std::printf("# measured %.4f m/s\n", v.value_or(NAN));
+            d(check(v && std::fabs(*v - 0.5) < 0.005));
+          })
+          .then("disable EPOS", [&](auto d) {
+            stream.stop();
+            epos.drive().disable(d);
+          });
     } else {
       std::fprintf(stderr, "canopen-scenario: unknown scenario '%s'\n", scenario.c_str());
       return 2;

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
+#include "advee/canopen/device_description.hpp"
 #include "advee/canopen/emcy.hpp"
 #include "advee/canopen/pdo.hpp"
 
@@ -15,31 +17,7 @@ namespace cw = cia402::cw;
 namespace sw = cia402::sw;
 
 namespace {
-constexpr std::uint32_t kDeviceTypeServo = 0x00020192;  // CiA 402, servo drive
 constexpr std::uint8_t kMaxMapped = 8;
-
-struct PdoDefault {
-  std::uint32_t cob_flags;  // bits 31/30 on top of the predefined COB-ID
-  std::vector<std::uint32_t> map;
-};
-
-// canopen-notes.md §3.13 (EPOS2 70/10 EDS) and §3.12 second convention (IclA).
-const std::array<PdoDefault, 4> kEposRpdo = {{{0, {0x60400010}},
-                                              {0, {0x60400010, 0x60600008}},
-                                              {0, {0x60400010, 0x607A0020}},
-                                              {0, {0x60400010, 0x60FF0020}}}};
-const std::array<PdoDefault, 4> kEposTpdo = {{{kPdoCobNoRtr, {0x60410010}},
-                                              {kPdoCobInvalid | kPdoCobNoRtr, {0x60410010, 0x60610008}},
-                                              {kPdoCobInvalid | kPdoCobNoRtr, {0x60410010, 0x60640020}},
-                                              {kPdoCobInvalid | kPdoCobNoRtr, {0x60410010, 0x606C0020}}}};
-const std::array<PdoDefault, 4> kIclaRpdo = {{{0, {0x60400010}},
-                                              {0, {0x60400010, 0x607A0020}},
-                                              {0, {0x60400010, 0x60FF0020}},
-                                              {0, {0x60400010, 0x60600008}}}};
-const std::array<PdoDefault, 4> kIclaTpdo = {{{kPdoCobNoRtr, {0x60410010}},
-                                              {kPdoCobNoRtr, {0x60410010, 0x60640020}},
-                                              {kPdoCobNoRtr, {0x60410010, 0x606C0020}},
-                                              {kPdoCobInvalid | kPdoCobNoRtr, {0x60410010, 0x60610008}}}};
 
 PdoMapping mapping_from(const ObjectDictionary& od, PdoKind kind, unsigned n) {
   PdoMapping m;
@@ -63,65 +41,21 @@ SimulatedDrive::SimulatedDrive(DriveSimConfig cfg, FrameSender send, NowFn now)
 }
 
 void SimulatedDrive::build_dictionary() {
-  const bool epos = cfg_.profile == DriveProfile::kEpos;
-  using A = Access;
-  od_.add<std::uint32_t>(0x1000, 0, kDeviceTypeServo, A::kReadOnly);
-  od_.add<std::uint8_t>(0x1001, 0, 0, A::kReadOnly, true);
-  od_.add_string(0x1008, 0, epos ? "EPOS 70/10 (simulated)" : "IclA D065 (simulated)");
-  od_.add<std::uint8_t>(0x1016, 0, 1, A::kReadOnly);
-  od_.add<std::uint32_t>(0x1016, 1, 0);
-  od_.add<std::uint16_t>(0x1017, 0, 0);
-  od_.add<std::uint8_t>(0x1018, 0, 4, A::kReadOnly);
-  od_.add<std::uint32_t>(0x1018, 1, epos ? 0x000000FBu : 0x0000005Au, A::kReadOnly);
-  od_.add<std::uint32_t>(0x1018, 2, epos ? 0x64200000u : 0x00000065u, A::kReadOnly);
-  od_.add<std::uint32_t>(0x1018, 3, 0x00010000, A::kReadOnly);
-  od_.add<std::uint32_t>(0x1018, 4, cfg_.serial ? cfg_.serial : cfg_.node, A::kReadOnly);
-  const auto& rp = epos ? kEposRpdo : kIclaRpdo;
-  const auto& tp = epos ? kEposTpdo : kIclaTpdo;
-  for (unsigned n = 1; n <= 4; ++n) {
-    const auto rc = pdo_comm_index(PdoKind::kRpdo, n), rm = pdo_map_index(PdoKind::kRpdo, n);
-    od_.add<std::uint8_t>(rc, 0, 2, A::kReadOnly);
-    od_.add<std::uint32_t>(rc, 1, default_pdo_cob_id(PdoKind::kRpdo, n, cfg_.node) | rp[n - 1].cob_flags);
-    od_.add<std::uint8_t>(rc, 2, 255);
-    od_.add<std::uint8_t>(rm, 0, static_cast<std::uint8_t>(rp[n - 1].map.size()));
-    for (std::uint8_t s = 1; s <= kMaxMapped; ++s)
-      od_.add<std::uint32_t>(rm, s, s <= rp[n - 1].map.size() ? rp[n - 1].map[s - 1] : 0);
-    const auto tc = pdo_comm_index(PdoKind::kTpdo, n), tm = pdo_map_index(PdoKind::kTpdo, n);
-    od_.add<std::uint8_t>(tc, 0, 5, A::kReadOnly);
-    od_.add<std::uint32_t>(tc, 1, default_pdo_cob_id(PdoKind::kTpdo, n, cfg_.node) | tp[n - 1].cob_flags);
-    od_.add<std::uint8_t>(tc, 2, 255);
-    od_.add<std::uint16_t>(tc, 3, 10);  // 1 ms inhibit
-    od_.add<std::uint16_t>(tc, 5, 0);
-    od_.add<std::uint8_t>(tm, 0, static_cast<std::uint8_t>(tp[n - 1].map.size()));
-    for (std::uint8_t s = 1; s <= kMaxMapped; ++s)
-      od_.add<std::uint32_t>(tm, s, s <= tp[n - 1].map.size() ? tp[n - 1].map[s - 1] : 0);
+  // The EDS is the one description of the drive: the master reads the same
+  // file to check the identity and to configure the drive.
+  DescriptionResult r = cfg_.eds_file.empty()
+                            ? parse_device_description(shipped_eds(cfg_.profile), shipped_eds_name(cfg_.profile), cfg_.node)
+                            : load_device_description(cfg_.eds_file, cfg_.node);
+  if (!r.description) {
+    std::string msg = "simulated drive: bad device description";
+    for (const auto& e : r.errors) msg += "\n" + e.text();
+    throw std::runtime_error(msg);
   }
-  // Vendor scratch domain: lets tests exercise segmented download + upload.
-  od_.add_string(0x2000, 0, "", Access::kReadWrite);
-  od_.add<std::int16_t>(0x6007, 0, 3);  // abort connection option: quick stop
-  od_.add<std::uint16_t>(0x603F, 0, 0, A::kReadOnly, true);
-  od_.add<std::uint16_t>(0x6040, 0, 0, A::kReadWrite, true);
-  od_.add<std::uint16_t>(0x6041, 0, 0, A::kReadOnly, true);
-  if (!epos) od_.add<std::int16_t>(0x605A, 0, 6);  // quick stop, stay in quick stop active
-  od_.add<std::int8_t>(0x6060, 0, 0, A::kReadWrite, true);
-  od_.add<std::int8_t>(0x6061, 0, 0, A::kReadOnly, true);
-  od_.add<std::int32_t>(0x6064, 0, 0, A::kReadOnly, true);
-  od_.add<std::int32_t>(0x606C, 0, 0, A::kReadOnly, true);
-  od_.add<std::int32_t>(0x607A, 0, 0, A::kReadWrite, true);
-  od_.add<std::int32_t>(0x607C, 0, cfg_.home_offset);
-  od_.add<std::uint32_t>(0x607F, 0, 25000);
-  od_.add<std::uint32_t>(0x6081, 0, 1000, A::kReadWrite, true);
-  od_.add<std::uint32_t>(0x6083, 0, 10000, A::kReadWrite, true);
-  od_.add<std::uint32_t>(0x6084, 0, 10000, A::kReadWrite, true);
-  od_.add<std::uint32_t>(0x6085, 0, 10000);
-  od_.add<std::int8_t>(0x6098, 0, epos ? 7 : 0);
-  od_.add<std::uint8_t>(0x6099, 0, 2, A::kReadOnly);
-  od_.add<std::uint32_t>(0x6099, 1, 100);
-  od_.add<std::uint32_t>(0x6099, 2, 10);
-  od_.add<std::uint32_t>(0x609A, 0, 1000);
-  od_.add<std::int32_t>(0x60FF, 0, 0, A::kReadWrite, true);
-  // pp, pv, hm
-  od_.add<std::uint32_t>(0x6502, 0, (1u << 0) | (1u << 2) | (1u << 5), A::kReadOnly);
+  od_ = std::move(r.description->od);
+  // Per simulated instance (where homing puts the position, which serial
+  // number tells it from others of its type for LSS), not per device type.
+  od_.set<std::int32_t>(0x607C, 0, cfg_.home_offset);
+  if (cfg_.serial) od_.set<std::uint32_t>(0x1018, 4, cfg_.serial);
 }
 
 void SimulatedDrive::install_validators() {

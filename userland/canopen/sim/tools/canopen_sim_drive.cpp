@@ -12,6 +12,7 @@
 #include <string>
 
 #include "advee/canopen/can_port.hpp"
+#include "advee/canopen/device_description.hpp"
 #include "advee/canopen/event_loop.hpp"
 #include "advee/canopen/runtime.hpp"
 #include "advee/canopen/sim/drive_sim.hpp"
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
                "Signals: SIGUSR1 injects EMCY 0x4210 and a fault, SIGUSR2 toggles heartbeat silence,\n"
                "SIGINT and SIGTERM end it. An LSS slave (CiA 305, identity = 0x1018) answers on 0x7E5;\n"
                "with --unconfigured the drive has no node-ID and boots when an LSS master gives it one.\n"
-               "Exit status: 0 ended by a signal, 1 the CAN interface failed, 2 bad command line.",
+               "Exit status: 0 ended by a signal, 1 the CAN interface failed, 2 bad command line or --eds file.",
                "canopen-sim-drive"};
   std::string ifname = "vcan0";
   sim::DriveSimConfig cfg;
@@ -44,6 +45,9 @@ int main(int argc, char** argv) {
   app.add_option("-p,--profile", profile, "object dictionary and PDO defaults")
       ->check(CLI::IsMember({"epos", "icla"}))
       ->capture_default_str();
+  app.add_option("--eds", cfg.eds_file,
+                 "build the dictionary from this EDS instead of the profile's shipped one (its 0x1018 is the "
+                 "identity the drive reports)");
   app.add_option("--home-switch", cfg.home_switch_position, "position of the home switch")->capture_default_str();
   app.add_option("--step-ms", step_ms, "dynamics step in ms")->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--sdo-delay-ms", sdo_delay_ms, "answer SDO requests this late")->check(CLI::NonNegativeNumber);
@@ -68,6 +72,12 @@ int main(int argc, char** argv) {
     if (std::sscanf(spec.c_str(), "%x:%x=%x%c", &idx, &sub, &code, &end) != 3 || idx > 0xFFFF || sub > 0xFF)
       return advee::cli::usage_error(app, "--sdo-abort " + spec + ": expected INDEX:SUB=CODE in hex");
     aborts[{static_cast<std::uint16_t>(idx), static_cast<std::uint8_t>(sub)}] = static_cast<SdoAbort>(code);
+  }
+  if (!cfg.eds_file.empty()) {
+    // Checked before any I/O, like the other arguments.
+    const DescriptionResult r = load_device_description(cfg.eds_file, cfg.node);
+    for (const auto& e : r.errors) std::fprintf(stderr, "canopen-sim-drive: %s\n", e.text().c_str());
+    if (!r.description) return 2;
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
 

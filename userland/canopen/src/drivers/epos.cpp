@@ -17,6 +17,7 @@ DriveConfig with_pdos(EposConfig c) {
   d.control_entries = {PdoEntry::from_raw(0x60400010), PdoEntry::from_raw(0x60FF0020)};
   d.status_tpdo = 4;
   d.status_entries = {PdoEntry::from_raw(0x60410010), PdoEntry::from_raw(0x606C0020)};
+  take_pdos_from_device(d, {0x6040, 0x60FF}, {0x6041, 0x606C});
   return d;
 }
 }  // namespace

@@ -16,6 +16,7 @@ DriveConfig with_pdos(IclaConfig c) {
   d.control_entries = {PdoEntry::from_raw(0x60400010), PdoEntry::from_raw(0x607A0020)};
   d.status_tpdo = 2;
   d.status_entries = {PdoEntry::from_raw(0x60410010), PdoEntry::from_raw(0x60640020)};
+  take_pdos_from_device(d, {0x6040, 0x607A}, {0x6041, 0x6064});
   return d;
 }
 }  // namespace

@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
 #include "advee/driver_canbus/config.hpp"
 
+#include "advee/canopen/device_description.hpp"
+#include "advee/canopen/node_boot.hpp"
+
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 
 namespace advee::driver_canbus {
@@ -16,8 +20,25 @@ unsigned node_id(const ConfigNode& n, unsigned fallback) {
   return id;
 }
 
-// The keys both drives share: heartbeats, SDO timeout, PDO remapping.
-void parse_drive_common(const ConfigNode& n, canopen::DriveConfig& d) {
+// The drive's device description (EDS or DCF; relative to the configuration
+// file): its identity is checked and its ParameterValue objects downloaded
+// before the driver's own boot (CiA 302-2 style, canopen::NodeBoot).
+void parse_device(const ConfigNode& n, unsigned node, canopen::DriveConfig& d) {
+  if (!n.has("dcf")) return;
+  std::filesystem::path path = n.get<std::string>("dcf", "");
+  if (path.is_relative()) path = std::filesystem::path(n.file()).parent_path() / path;
+  const auto r = canopen::load_device_description(path.string(), static_cast<std::uint8_t>(node));
+  if (!r.description) {
+    std::string why = "device description not usable:";
+    for (const auto& e : r.errors) why += "\n  " + e.text();
+    n.fail("dcf", why);
+  }
+  d.device = canopen::boot_config_from_dcf(*r.description, d.name);
+}
+
+// The keys both drives share: heartbeats, SDO timeout, PDO remapping, device description.
+void parse_drive_common(const ConfigNode& n, unsigned node, canopen::DriveConfig& d) {
+  parse_device(n, node, d);
   const auto hb = n.get<unsigned>("heartbeat_ms", d.heartbeat_ms);
   if (hb < 10 || hb > 10000) n.fail("heartbeat_ms", "must be 10..10000");
   d.heartbeat_ms = static_cast<std::uint16_t>(hb);
@@ -39,7 +60,7 @@ std::uint32_t positive_u32(const ConfigNode& n, std::string_view key, std::uint3
 void parse_propulsion(const ConfigNode& n, ControllerConfig& c) {
   n.allow_only({"node", "wheel_radius_m", "gear_ratio", "max_speed_mps", "acceleration_rpm_s", "deceleration_rpm_s",
                 "quick_stop_deceleration_rpm_s", "heartbeat_ms", "master_timeout_ms", "sdo_timeout_ms",
-                "remap_pdos"});
+                "remap_pdos", "dcf"});
   auto& e = c.epos;
   e.node = static_cast<std::uint8_t>(node_id(n, e.node));
   e.wheel_radius_m = n.get<double>("wheel_radius_m", e.wheel_radius_m);
@@ -51,13 +72,13 @@ void parse_propulsion(const ConfigNode& n, ControllerConfig& c) {
   e.acceleration_rpm_s = positive_u32(n, "acceleration_rpm_s", e.acceleration_rpm_s);
   e.deceleration_rpm_s = positive_u32(n, "deceleration_rpm_s", e.deceleration_rpm_s);
   e.quick_stop_deceleration_rpm_s = positive_u32(n, "quick_stop_deceleration_rpm_s", e.quick_stop_deceleration_rpm_s);
-  parse_drive_common(n, e.drive);
+  parse_drive_common(n, e.node, e.drive);
 }
 
 void parse_steering(const ConfigNode& n, ControllerConfig& c) {
   n.allow_only({"node", "units_per_rad", "limit_deg", "profile_velocity", "acceleration", "deceleration", "homing",
                 "heartbeat_ms",
-                "master_timeout_ms", "sdo_timeout_ms", "remap_pdos"});
+                "master_timeout_ms", "sdo_timeout_ms", "remap_pdos", "dcf"});
   auto& i = c.icla;
   i.node = static_cast<std::uint8_t>(node_id(n, i.node));
   i.units_per_rad = n.get<double>("units_per_rad", i.units_per_rad);
@@ -82,7 +103,7 @@ void parse_steering(const ConfigNode& n, ControllerConfig& c) {
                                                             i.drive.homing_timeout),
                                            0.1, 600);
   }
-  parse_drive_common(n, i.drive);
+  parse_drive_common(n, i.node, i.drive);
 }
 
 }  // namespace

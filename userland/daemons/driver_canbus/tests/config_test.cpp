@@ -79,5 +79,27 @@ TEST(CanbusConfigTest, MistakesNameTheKey) {
   fails_on("driver_canbus: {master: {node_id: 1}}", "master");
 }
 
+TEST(CanbusConfigTest, DcfGivesTheIdentityToCheckAndTheConfiguration) {
+  const auto c = parse("driver_canbus:\n"
+                       "  propulsion: {node: 3, dcf: " ADVEE_CANOPEN_DATA "/epos-70-10.eds}\n");
+  ASSERT_TRUE(c.controller.epos.drive.device);
+  EXPECT_EQ(c.controller.epos.drive.device->node, 3);
+  EXPECT_EQ(c.controller.epos.drive.device->identity[0], 0x000000FBu);
+  EXPECT_EQ(c.controller.epos.drive.device->identity[1], 0x64200000u);
+  EXPECT_FALSE(c.controller.epos.drive.device->identity[3]);  // no serial in an EDS
+  EXPECT_FALSE(c.controller.icla.drive.device);
+}
+
+TEST(CanbusConfigTest, AnUnusableDcfNamesTheKeyAndTheFileLine) {
+  try {
+    parse("driver_canbus:\n  steering: {dcf: /nonexistent/icla.dcf}\n");
+    ADD_FAILURE() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("dcf"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/icla.dcf:0: expected a readable file"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace advee::driver_canbus

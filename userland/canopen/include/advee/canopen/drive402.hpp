@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "advee/canopen/axis402.hpp"
 #include "advee/canopen/lifetime.hpp"
 #include "advee/canopen/master.hpp"
+#include "advee/canopen/node_boot.hpp"
 #include "advee/canopen/pdo.hpp"
 
 namespace advee::canopen {
@@ -40,7 +42,19 @@ struct DriveConfig {
   Duration setpoint_timeout = std::chrono::milliseconds(500);
   Duration move_timeout = std::chrono::seconds(30);
   Duration homing_timeout = std::chrono::seconds(30);
+  // The device this node must be and its configuration (boot_config_from_dcf()
+  // of its DCF or EDS): when set, boot() first runs that CiA 302-2 check and
+  // download (NodeBoot; node and name from here, its NMT start left to the
+  // end of this boot), and a wrong device is refused before any write.
+  std::optional<NodeBootConfig> device = std::nullopt;
 };
+
+// A drive driver's PDO layout from its device description: when d.device is
+// set and maps an RPDO with every object of `control` (a TPDO with every
+// object of `status`), that PDO's number and entries replace the driver's
+// built-in choice, which stays for a drive without a description.
+void take_pdos_from_device(DriveConfig& d, std::initializer_list<std::uint16_t> control,
+                           std::initializer_list<std::uint16_t> status);
 
 enum class DriveEventKind { kEmcy, kHeartbeatLost, kHeartbeatResumed, kRebooted, kFault };
 struct DriveEvent {
@@ -106,6 +120,7 @@ class Drive402 final : public TimedService {
   void finish_motion(std::error_code ec);
   void read_mode_display();
   void boot_failed(const std::string& why, std::error_code ec);
+  void boot_driver();
 
   Master& master_;
   DriveConfig cfg_;
@@ -123,6 +138,7 @@ class Drive402 final : public TimedService {
   bool booted_ = false;
   bool booting_ = false;
   Done boot_done_;
+  std::unique_ptr<NodeBoot> device_boot_;  // this boot's, while cfg_.device is set
   std::string boot_error_;
   std::string mismatch_;
   std::optional<cia402::Mode> mode_;

@@ -11,6 +11,8 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <string_view>
 
 #include "advee/canopen/cia402.hpp"
 #include "advee/canopen/clock.hpp"
@@ -45,10 +47,18 @@ struct DriveSimConfig {
   // (robot-sim's steering), whose switch does not move when the drive's
   // position counter is re-referenced.
   std::optional<double> home_switch_travel = std::nullopt;
-  std::int32_t home_offset = 0;  // 0x607C at power-on: the position homing sets at the switch
-  std::uint32_t serial = 0;  // 0x1018:4, serial number; 0: the node-ID
+  std::int32_t home_offset = 0;  // 0x607C at power-on: the position homing sets at the switch (replaces the EDS's)
+  std::uint32_t serial = 0;  // 0x1018:4, serial number; 0: the EDS's ($NODEID, the node-ID)
   Duration step = std::chrono::milliseconds(1);
+  // The device description (EDS) the dictionary is built from; empty: the
+  // profile's shipped one (data/*.eds, built in: shipped_eds()). The
+  // constructor throws std::runtime_error with the parse errors of a bad one.
+  std::string eds_file = {};
 };
+
+// The shipped EDS of a profile (userland/canopen/data) and its file name.
+std::string_view shipped_eds(DriveProfile profile);
+std::string_view shipped_eds_name(DriveProfile profile);
 
 class SimulatedDrive {
  public:
