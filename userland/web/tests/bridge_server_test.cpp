@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "advee/web/password_file.hpp"
+#include "websocket_test_client.hpp"
 
 namespace advee::web {
 namespace {
@@ -118,20 +119,8 @@ class Bridge : public ::testing::Test {
     return r.substr(at + 14, 64);
   }
   // The upgrade's answer head; `s` is left open after a 101.
-  std::string upgrade(tcp::socket& s, const std::string& headers) {
-    asio::write(s, asio::buffer("GET / HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n" +
-                                headers +
-                                "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"));
-    // Byte by byte: the first frames may follow the headers at once.
-    std::string head;
-    while (head.size() < 4 || head.compare(head.size() - 4, 4, "\r\n\r\n") != 0) {
-      char c;
-      std::error_code ec;
-      asio::read(s, asio::buffer(&c, 1), ec);
-      if (ec) break;
-      head.push_back(c);
-    }
-    return head;
+  static std::string upgrade(tcp::socket& s, const std::string& headers) {
+    return test::websocket_upgrade(s, "x", headers);
   }
   tcp::socket websocket(const std::string& cookie = "") {
     auto s = connect();
@@ -140,25 +129,8 @@ class Bridge : public ::testing::Test {
     EXPECT_EQ(head.rfind("HTTP/1.1 101", 0), 0u) << head;
     return s;
   }
-  // One masked client frame (opcode 1 = text, 2 = binary).
   static void send_frame(tcp::socket& s, const std::string& payload, std::uint8_t opcode = 1) {
-    std::string f;
-    f.push_back(static_cast<char>(0x80 | opcode));
-    if (payload.size() < 126) {
-      f.push_back(static_cast<char>(0x80 | payload.size()));
-    } else if (payload.size() < 65536) {
-      f.push_back(static_cast<char>(0x80 | 126));
-      f.push_back(static_cast<char>(payload.size() >> 8));
-      f.push_back(static_cast<char>(payload.size() & 0xff));
-    } else {
-      f.push_back(static_cast<char>(0x80 | 127));
-      for (int i = 7; i >= 0; --i) f.push_back(static_cast<char>((payload.size() >> (8 * i)) & 0xff));
-    }
-    const char mask[4] = {0x12, 0x34, 0x56, 0x78};
-    f.append(mask, 4);
-    for (std::size_t i = 0; i < payload.size(); ++i) f.push_back(payload[i] ^ mask[i % 4]);
-    std::error_code ec;
-    asio::write(s, asio::buffer(f), ec);
+    test::websocket_send(s, payload, opcode);
   }
   struct Call {
     ControlRequest request;
@@ -183,32 +155,9 @@ class Bridge : public ::testing::Test {
     }
     return c;
   }
-  // One unmasked server frame's text.
-  static std::string read_frame(tcp::socket& s) {
-    std::uint8_t h[2];
-    asio::read(s, asio::buffer(h));
-    EXPECT_EQ(h[0], 0x81);  // FIN + text
-    std::uint64_t len = h[1] & 0x7f;
-    if (len == 126) {
-      std::uint8_t l[2];
-      asio::read(s, asio::buffer(l));
-      len = (l[0] << 8) | l[1];
-    } else if (len == 127) {
-      std::uint8_t l[8];
-      asio::read(s, asio::buffer(l));
-      len = 0;
-      for (auto b : l) len = (len << 8) | b;
-    }
-    std::string payload(len, '\0');
-    asio::read(s, asio::buffer(payload));
-    return payload;
-  }
-  // Frames until one whose text starts with `prefix` (skips WEB_BRIDGE status).
+  static std::string read_frame(tcp::socket& s) { return test::websocket_read(s); }
   static std::string read_until_prefix(tcp::socket& s, const std::string& prefix) {
-    for (;;) {
-      auto f = read_frame(s);
-      if (f.rfind(prefix, 0) == 0) return f;
-    }
+    return test::websocket_read_until(s, prefix);
   }
 
   asio::io_context io_, client_io_;

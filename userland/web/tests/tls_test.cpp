@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "advee/web/password_file.hpp"
+#include "websocket_test_client.hpp"
 
 namespace advee::web {
 namespace {
@@ -148,53 +149,13 @@ class BridgeTls : public ::testing::Test {
     return request("POST /login HTTP/1.1\r\nOrigin: " + origin + "\r\n",
                    R"({"user":"alice","password":"alice-password"})");
   }
-  // The upgrade's answer head; the stream stays open after a 101.
   static std::string upgrade(TlsStream& s, const std::string& headers) {
-    asio::write(s, asio::buffer("GET / HTTP/1.1\r\nHost: localhost\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n" +
-                                headers +
-                                "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"));
-    std::string head;
-    while (head.size() < 4 || head.compare(head.size() - 4, 4, "\r\n\r\n") != 0) {
-      char c;
-      std::error_code ec;
-      asio::read(s, asio::buffer(&c, 1), ec);
-      if (ec) break;
-      head.push_back(c);
-    }
-    return head;
+    return test::websocket_upgrade(s, "localhost", headers);
   }
-  static void send_frame(TlsStream& s, const std::string& payload) {
-    std::string f;
-    f.push_back(static_cast<char>(0x81));
-    f.push_back(static_cast<char>(0x80 | payload.size()));  // the tests' frames are < 126 bytes
-    const char mask[4] = {0x12, 0x34, 0x56, 0x78};
-    f.append(mask, 4);
-    for (std::size_t i = 0; i < payload.size(); ++i) f.push_back(payload[i] ^ mask[i % 4]);
-    asio::write(s, asio::buffer(f));
-  }
-  static std::string read_frame(TlsStream& s) {
-    std::uint8_t h[2];
-    asio::read(s, asio::buffer(h));
-    std::uint64_t len = h[1] & 0x7f;
-    if (len == 126) {
-      std::uint8_t l[2];
-      asio::read(s, asio::buffer(l));
-      len = (l[0] << 8) | l[1];
-    } else if (len == 127) {
-      std::uint8_t l[8];
-      asio::read(s, asio::buffer(l));
-      len = 0;
-      for (auto b : l) len = (len << 8) | b;
-    }
-    std::string payload(len, '\0');
-    asio::read(s, asio::buffer(payload));
-    return payload;
-  }
+  static void send_frame(TlsStream& s, const std::string& payload) { test::websocket_send(s, payload); }
+  static std::string read_frame(TlsStream& s) { return test::websocket_read(s); }
   static std::string read_until_prefix(TlsStream& s, const std::string& prefix) {
-    for (;;) {
-      auto f = read_frame(s);
-      if (f.rfind(prefix, 0) == 0) return f;
-    }
+    return test::websocket_read_until(s, prefix);
   }
   std::vector<std::pair<ControlRequest, Operator>> wait_calls(std::size_t n) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
