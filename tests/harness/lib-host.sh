@@ -192,18 +192,22 @@ system_suites() {
 # stock_kernel_suites 6.1|6.12|6.12-rt: the kernel suites make check runs on
 # that stock Debian kernel (docs/kernels.md), besides the debug lane, which
 # runs all of them: those whose settings say rt_lane=1 (the DIO irqchip,
-# ts-can1's shared interrupt, n_rs485 under threaded interrupts) on 6.12-rt
-# and on 6.1 (where they have two CPUs: dio-i2c/unbind-poll needs them), the
-# others on 6.12, so that each kernel suite runs on a stock kernel of each
-# series it can in every run. A suite runs on 6.12 with some of its programs
-# also on 6.12-rt when its settings say rt_programs=PROG... (tsuart:
-# traffic, issue 19 item 4).
+# ts-can1's shared interrupt, n_rs485 under threaded interrupts) on 6.12-rt,
+# the others on 6.12, so that each kernel suite runs on a stock kernel in
+# every run; those whose settings say stock_6_1=1 on 6.1 as well (two CPUs
+# there: dio-i2c/unbind-poll needs them). A suite runs on 6.12 with some of
+# its programs also on 6.12-rt when its settings say rt_programs=PROG...
+# (tsuart: traffic, issue 19 item 4).
 stock_kernel_suites() {
 	local suite settings prog
 	for suite in $(kernel_suites); do
 		settings=$TOP/tests/vm/$suite/settings
+		if [ "$1" = 6.1 ]; then
+			grep -qx 'stock_6_1=1' "$settings" && echo "$suite"
+			continue
+		fi
 		if grep -qx 'rt_lane=1' "$settings"; then
-			[ "$1" = 6.12 ] || echo "$suite"
+			[ "$1" = 6.12-rt ] && echo "$suite"
 		else
 			[ "$1" = 6.12 ] && echo "$suite"
 			[ "$1" = 6.12-rt ] || continue
