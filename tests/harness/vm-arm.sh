@@ -1,45 +1,60 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# vm-arm.sh - the ARM VM test lane.
+# vm-arm.sh - the ARM VM test lanes.
 #
-# Boots Debian's armhf armmp kernel on qemu-system-arm -M virt (TCG) with an
-# initramfs that holds busybox, Debian's armhf tools the tests call
-# (scripts/fetch-arm-userland.sh), the cross-built modules with the depmod
-# output of the whole kernel tree and the statically linked test programs of
-# the suites marked portable=1. The kernel's own module tree and the
-# repository (shell programs) come over virtio-9p, read-only; results come back
-# over the serial console.
+# --arch armhf (the default): Debian's armhf armmp kernel on qemu-system-arm
+# -M virt (TCG, Cortex-A15, two CPUs). The kernel's own module tree and the
+# repository (shell programs) come over virtio-9p, read-only.
+# --arch armel: Debian's armel rpi kernel (ARMv6, the armel ABI of the
+# robot's ARMv5TE; QEMU has no machine for the marvell kernel,
+# docs/kernels.md) on -M raspi0 (ARM1176, one CPU, 512 MB). That machine has
+# no virtio: the kernel's module tree is an ext4 image on the SD card and the
+# repository is in the initramfs.
+# Both: an initramfs with busybox, Debian's tools of that architecture the
+# tests call (scripts/fetch-arm-userland.sh), the cross-built modules with the
+# depmod output of the whole kernel tree and the statically linked test
+# programs of the suites marked portable=1; results come back over the serial
+# console.
 #
-# usage: vm-arm.sh [--test SUITE[/PROGRAM]] [--shell] [--lane NAME]
+# usage: vm-arm.sh [--arch armhf|armel] [--test SUITE[/PROGRAM]] [--shell] [--lane NAME]
 # Environment: VMTEST_VERBOSE=1 streams the guest console.
 set -euo pipefail
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
 . "$TOP/scripts/lib.sh"
 . "$TOP/tests/harness/lib-host.sh"
 
-tests=() shell=0 lane=armhf
+tests=() shell=0 lane= arch=armhf
 while [ $# -gt 0 ]; do
 	case $1 in
+	--arch) arch=$2; shift 2 ;;
 	--test) tests+=("$2"); shift 2 ;;
 	--lane) lane=$2; shift 2 ;;
 	--shell) shell=1; shift ;;
-	-h|--help) sed -n '3,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	-h|--help) sed -n '3,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-arm.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
+# kmod: the build target of the modules (build-kmod.sh); progs: of the test
+# programs (build-testprogs.sh); media: how the kernel's module tree gets in.
+case $arch in
+armhf) kmod=armhf progs=armhf media=9p ;;
+armel) kmod=armel-rpi progs=armel media=sd ;;
+*) die "vm-arm.sh: --arch armhf or armel, not $arch" ;;
+esac
+lane=${lane:-$arch}
 
-root=$(arm_tree armhf armmp)
+root=$(arm_tree "$arch" "$(arm_target_flavour "$kmod")")
 kver=$(cat "$(dirname "$root")/kernelrelease")
 kernel=$root/boot/vmlinuz-$kver
-modules=$BUILD/kmod/armhf/modules.list
-[ -r "$kernel" ] || die "no armhf kernel at $kernel"
-[ -r "$modules" ] || die "no armhf module list (run: scripts/build-kmod.sh armhf)"
+modules=$BUILD/kmod/$kmod/modules.list
+[ -r "$kernel" ] || die "no $arch kernel at $kernel"
+[ -r "$modules" ] || die "no $kmod module list (run: scripts/build-kmod.sh $kmod)"
 case $TOP in
 *[[:space:],]*) die "the repository path must not contain white space or commas (qemu -virtfs): $TOP" ;;
 esac
-userland=$("$TOP/scripts/fetch-arm-userland.sh" armhf)
-"$TOP/scripts/build-kmod-stock.sh" armhf
+userland=$("$TOP/scripts/fetch-arm-userland.sh" "$arch")
+"$TOP/scripts/build-kmod-stock.sh" "$kmod"
 
 vmdir=$BUILD/vm/$lane
 mkdir -p "$vmdir"
@@ -58,20 +73,28 @@ mkdir -p "$stage"/{bin,vmtest,tests,proc,sys,dev,run,tmp,root}
 cp "$root/bin/busybox" "$stage/bin/busybox"
 install -m 0755 "$TOP/tests/harness/initramfs-init-arm" "$stage/init"
 cp "$TOP/tests/harness/guest-run.sh" "$stage/vmtest/"
+# No 9p on raspi0: the repository (5 MB without build/) goes in the initramfs.
+if [ "$media" = sd ]; then
+	rsync -a --exclude=/build/ --exclude=/.git --exclude=/.cache/ "$TOP/" "$stage/repo/"
+fi
 
-# Modules: ours (and the kernel's test modules the armmp config lacks:
+# Modules: ours (and the kernel's test modules its config lacks:
 # build-kmod-stock.sh) under extra/ with the depmod output of the whole tree;
-# the kernel's own tree comes over 9p (/init mounts it on kernel/), except
-# what /init loads to mount it.
+# the kernel's own tree comes over 9p or on the SD card (/init mounts it on
+# kernel/), except what /init loads to mount it.
 full=$vmdir/modtree
-cat "$modules" "$BUILD/kmod/armhf-stock/modules.list" >"$vmdir/staged-modules.list"
+cat "$modules" "$BUILD/kmod/$kmod-stock/modules.list" >"$vmdir/staged-modules.list"
 stage_modules "$kver" "$root/lib/modules/$kver" "$vmdir/staged-modules.list" "$full"
 mdir=$stage/lib/modules/$kver
 mkdir -p "$mdir"
 cp -r "$full/lib/modules/$kver"/{modules.*,extra} "$mdir/"
 : >"$results/modules.list"
 while read -r ko; do echo "$(basename "$ko" .ko)" >>"$results/modules.list"; done <"$modules"
-for m in virtio_mmio 9pnet_virtio 9p; do
+case $media in
+9p) boot_modules="virtio_mmio 9pnet_virtio 9p" ;;
+sd) boot_modules="crc32c_generic ext4" ;;
+esac
+for m in $boot_modules; do
 	modprobe -d "$full" -S "$kver" --show-depends "$m" | awk '$1 == "insmod" { print $2 }'
 done | sort -u | while read -r path; do
 	rel=${path#"$full/lib/modules/$kver/"}
@@ -92,8 +115,8 @@ fi
 while read -r suite prog path limit; do
 	case $path in /tests/*) ;; *) continue ;; esac
 	mkdir -p "$stage/tests/$suite"
-	cp "$BUILD/tests/armhf/$suite/$prog" "$stage/tests/$suite/$prog" ||
-		die "test program $suite/$prog was not cross-built (run: scripts/build-testprogs.sh armhf)"
+	cp "$BUILD/tests/$progs/$suite/$prog" "$stage/tests/$suite/$prog" ||
+		die "test program $suite/$prog was not cross-built (run: scripts/build-testprogs.sh $progs)"
 done <"$results/tests.list"
 cp "$results/modules.list" "$results/tests.list" "$stage/vmtest/"
 cat >"$stage/vmtest/job.env" <<JOB
@@ -108,7 +131,7 @@ VMTEST_CONSOLE_RESULTS=1
 JOB
 # The initramfs: the userland archive (built once per userland, shared by
 # the lanes) followed by this run's archive; the kernel unpacks both.
-userland_cpio=$BUILD/vm/userland-armhf.cpio.gz
+userland_cpio=$BUILD/vm/userland-$arch.cpio.gz
 if [ ! -s "$userland_cpio" ] || [ "$userland/.advee-packages" -nt "$userland_cpio" ]; then
 	(cd "$userland" && find . ! -name .advee-packages | cpio -o -H newc --quiet -R 0:0 | gzip -1) >"$userland_cpio.$$"
 	mv "$userland_cpio.$$" "$userland_cpio"
@@ -119,13 +142,41 @@ initramfs=$vmdir/initramfs.cpio.gz
 	(cd "$stage" && find . | cpio -o -H newc --quiet -R 0:0 | gzip -1)
 } >"$initramfs"
 
-qemu=(qemu-system-arm -M virt -cpu cortex-a15 -smp "${VMTEST_SMP:-2}" -m "${VMTEST_MEM:-1024}"
-	-nographic -no-reboot -nic none -kernel "$kernel" -initrd "$initramfs"
-	-fsdev "local,id=kmods,path=$root/lib/modules/$kver/kernel,security_model=none,readonly=on"
-	-device virtio-9p-device,fsdev=kmods,mount_tag=kmods
-	-fsdev "local,id=repo,path=$TOP,security_model=none,readonly=on,multidevs=remap"
-	-device virtio-9p-device,fsdev=repo,mount_tag=repo)
-append="console=ttyAMA0 panic=-1 loglevel=5"
+case $media in
+9p)
+	qemu=(qemu-system-arm -M virt -cpu cortex-a15 -smp "${VMTEST_SMP:-2}" -m "${VMTEST_MEM:-1024}"
+		-nographic -no-reboot -nic none -kernel "$kernel" -initrd "$initramfs"
+		-fsdev "local,id=kmods,path=$root/lib/modules/$kver/kernel,security_model=none,readonly=on"
+		-device virtio-9p-device,fsdev=kmods,mount_tag=kmods
+		-fsdev "local,id=repo,path=$TOP,security_model=none,readonly=on,multidevs=remap"
+		-device virtio-9p-device,fsdev=repo,mount_tag=repo)
+	append="console=ttyAMA0 panic=-1 loglevel=5" ;;
+sd)
+	# QEMU 7.2's raspi0 has no BCM2835 power-management ASB block: the
+	# kernel's bcm2835-power driver, which the DT's "asb" registers bring in,
+	# dies on an external abort there (docs/kernels.md). The DT without them
+	# keeps the PM block's watchdog and drops the power domains.
+	dtb=$vmdir/bcm2835-rpi-zero.dtb
+	cp "$root/usr/lib/linux-image-$kver/bcm2835-rpi-zero.dtb" "$dtb"
+	fdtput -t x "$dtb" /soc/watchdog@7e100000 reg 0x7e100000 0x114
+	fdtput -t s "$dtb" /soc/watchdog@7e100000 reg-names pm
+	# The kernel's module tree on the SD card (QEMU wants a power-of-two
+	# size), read-only for the guest (snapshot=on: writes stay in QEMU).
+	sd=$BUILD/vm/kmods-$kver.img
+	if [ ! -s "$sd" ] || [ "$root/lib/modules/$kver/kernel" -nt "$sd" ]; then
+		size=$(du -sm "$root/lib/modules/$kver/kernel" | cut -f1)
+		mb=64
+		while [ "$mb" -lt $((size * 3 / 2 + 16)) ]; do mb=$((mb * 2)); done
+		rm -f "$sd.$$"
+		truncate -s "${mb}M" "$sd.$$"
+		mke2fs -q -F -t ext4 -L kmods -d "$root/lib/modules/$kver/kernel" "$sd.$$" ||
+			die "cannot make the module tree's SD image"
+		mv "$sd.$$" "$sd"
+	fi
+	qemu=(qemu-system-arm -M raspi0 -nographic -no-reboot -kernel "$kernel" -dtb "$dtb"
+		-initrd "$initramfs" -drive "file=$sd,if=sd,format=raw,snapshot=on")
+	append="console=ttyAMA0 panic=-1 loglevel=5 vmtest.media=sd" ;;
+esac
 [ "$shell" = 1 ] && append="$append vmtest.shell=1"
 start=$(date +%s)
 boot_vm "$shell" 90 "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
