@@ -17,21 +17,27 @@
 # programs of the suites marked portable=1; results come back over the serial
 # console.
 #
-# usage: vm-arm.sh [--arch armhf|armel] [--test SUITE[/PROGRAM]] [--shell] [--lane NAME]
+# --cxx (armel): instead of the kernel suites, the C++ unit tests
+# (GoogleTest binaries of scripts/build-userland.sh armel-tests, each test a
+# TAP point through gtest-tap.sh; lane armel-cxx), with the build tree, the
+# repository and Debian's armel libraries at their host paths.
+#
+# usage: vm-arm.sh [--arch armhf|armel] [--test SUITE[/PROGRAM]] [--cxx] [--shell] [--lane NAME]
 # Environment: VMTEST_VERBOSE=1 streams the guest console.
 set -euo pipefail
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
 . "$TOP/scripts/lib.sh"
 . "$TOP/tests/harness/lib-host.sh"
 
-tests=() shell=0 lane= arch=armhf
+tests=() shell=0 lane= arch=armhf cxx=0
 while [ $# -gt 0 ]; do
 	case $1 in
 	--arch) arch=$2; shift 2 ;;
 	--test) tests+=("$2"); shift 2 ;;
 	--lane) lane=$2; shift 2 ;;
 	--shell) shell=1; shift ;;
-	-h|--help) sed -n '3,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+	--cxx) cxx=1; shift ;;
+	-h|--help) sed -n '3,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 	*) die "vm-arm.sh: unknown argument $1 (see --help)" ;;
 	esac
 done
@@ -42,7 +48,8 @@ armhf) kmod=armhf progs=armhf media=9p ;;
 armel) kmod=armel-rpi progs=armel media=sd ;;
 *) die "vm-arm.sh: --arch armhf or armel, not $arch" ;;
 esac
-lane=${lane:-$arch}
+[ "$cxx" = 0 ] || [ "$arch" = armel ] || die "vm-arm.sh: --cxx is for --arch armel"
+if [ "$cxx" = 1 ]; then lane=${lane:-$arch-cxx}; else lane=${lane:-$arch}; fi
 
 root=$(arm_tree "$arch" "$(arm_target_flavour "$kmod")")
 kver=$(cat "$(dirname "$root")/kernelrelease")
@@ -107,10 +114,42 @@ done
 # TCG emulates this 32-bit guest slower than the x86_64 one (tsuart/traffic:
 # 158 s there, over 600 s here), so the per-program timeouts (hang guards)
 # are multiplied by VMTEST_SLOWDOWN, 2 unless set.
-list_tests "$lane" /tests /repo "${tests[@]}" |
-	awk -v f="${VMTEST_SLOWDOWN:-2}" '{ $4 *= f; print }' >"$results/tests.list"
-if [ "${#tests[@]}" -gt 0 ] && [ ! -s "$results/tests.list" ]; then
-	die "no portable VM test matches: ${tests[*]}"
+if [ "$cxx" = 1 ]; then
+	# The C++ unit tests: every GoogleTest binary of the armel-tests build,
+	# run in its build directory at the host's path (tests read their config
+	# directories and start programs by the absolute paths CMake gave them).
+	cxxdir=$BUILD/userland-armel-tests
+	[ -f "$cxxdir/build.ninja" ] || die "no armel C++ tests (run: scripts/build-userland.sh armel-tests)"
+	mkdir -p "$stage/vmtest/cxx" "$stage$cxxdir" "$stage$TOP"
+	rsync -a --exclude=/build/ --exclude=/.git --exclude=/.cache/ "$TOP/" "$stage$TOP/"
+	(cd "$cxxdir" && find . -name CMakeFiles -prune -o -type f -perm /111 -print) | while read -r f; do
+		head -c 4 "$cxxdir/$f" | grep -q ELF || continue
+		mkdir -p "$stage$cxxdir/$(dirname "$f")"
+		cp "$cxxdir/$f" "$stage$cxxdir/$f"
+		case $f in
+		*_tests)
+			t=$(basename "$f")
+			printf '#!/bin/sh\nexec /vmtest/gtest-tap.sh %s\n' "$cxxdir/${f#./}" >"$stage/vmtest/cxx/$t"
+			chmod +x "$stage/vmtest/cxx/$t"
+			echo "cxx $t /vmtest/cxx/$t $((600 * ${VMTEST_SLOWDOWN:-2}))" ;;
+		esac
+	done | sort >"$results/tests.list"
+	install -m 0755 "$TOP/tests/harness/gtest-tap.sh" "$stage/vmtest/"
+	# Debian's armel libraries they link, and the cross toolchain's C++ runtime.
+	sysroot=$("$TOP/scripts/fetch-arm-sysroot.sh" armel)
+	for d in lib/arm-linux-gnueabi usr/lib/arm-linux-gnueabi; do
+		mkdir -p "$stage/$d"
+		[ -d "$sysroot/$d" ] || continue
+		(cd "$sysroot/$d" && find . -maxdepth 1 -name '*.so.*' -print0 | xargs -0 -r cp -a -t "$stage/$d/")
+	done
+	cp -a /usr/arm-linux-gnueabi/lib/libstdc++.so.6* /usr/arm-linux-gnueabi/lib/libgcc_s.so.1 \
+		"$stage/usr/lib/arm-linux-gnueabi/"
+else
+	list_tests "$lane" /tests /repo "${tests[@]}" |
+		awk -v f="${VMTEST_SLOWDOWN:-2}" '{ $4 *= f; print }' >"$results/tests.list"
+	if [ "${#tests[@]}" -gt 0 ] && [ ! -s "$results/tests.list" ]; then
+		die "no portable VM test matches: ${tests[*]}"
+	fi
 fi
 while read -r suite prog path limit; do
 	case $path in /tests/*) ;; *) continue ;; esac
@@ -179,7 +218,28 @@ sd)
 esac
 [ "$shell" = 1 ] && append="$append vmtest.shell=1"
 start=$(date +%s)
+watch=
+if [ "$media" = sd ] && [ "$shell" = 0 ]; then
+	# raspi0 cannot reset (QEMU has no BCM2835 PM watchdog): after a panic
+	# the kernel prints "Reboot failed -- System halted" and the guest would
+	# hold the lane for its whole budget. Stop it there.
+	rm -f "$vmdir/console.log"
+	(
+		while sleep 5; do
+			if grep -q 'Reboot failed -- System halted' "$vmdir/console.log" 2>/dev/null; then
+				echo "VMTEST-HOST: the guest halted (raspi0 cannot reboot after a panic); stopped" >"$vmdir/console.log.boot"
+				[ -s "$vmdir/console.log.pid" ] && kill "$(cat "$vmdir/console.log.pid")" 2>/dev/null
+				break
+			fi
+		done
+	) &
+	watch=$!
+fi
 boot_vm "$shell" 90 "$results" "$vmdir/console.log" "$append" "${qemu[@]}"
+if [ -n "$watch" ]; then
+	kill "$watch" 2>/dev/null || true
+	wait "$watch" 2>/dev/null || true
+fi
 
 # Rebuild the result files from the console.
 console=$vmdir/console.log
