@@ -214,6 +214,9 @@ sd)
 	fi
 	qemu=(qemu-system-arm -M raspi0 -nographic -no-reboot -kernel "$kernel" -dtb "$dtb"
 		-initrd "$initramfs" -drive "file=$sd,if=sd,format=raw,snapshot=on")
+	# VMTEST_ICOUNT=1: virtual time from the instruction count (-icount):
+	# an experiment against the guest going idle for good (docs/kernels.md).
+	[ "${VMTEST_ICOUNT:-0}" = 1 ] && qemu+=(-icount shift=auto,sleep=on)
 	append="console=ttyAMA0 panic=-1 loglevel=5 vmtest.media=sd" ;;
 esac
 [ "$shell" = 1 ] && append="$append vmtest.shell=1"
