@@ -4,7 +4,8 @@
 # build-kmod.sh TARGET [KDIR]: build every module of the project's Kbuild tree
 # with W=1 for one target kernel. TARGET is x86_64 (KDIR defaults to Debian's
 # 6.1 amd64 headers), x86_64-6.12 or x86_64-6.12-rt (bookworm-backports'
-# headers; lib.sh: amd64_kernel), armhf (armmp), armel (marvell), debug-6.12-rt
+# headers; lib.sh: amd64_kernel), armhf (armmp), armel (marvell), armel-rpi
+# (armel's rpi kernel, booted by the armel VM lane), debug-6.12-rt
 # or debug-6.1 (the debug lane's kernel: scripts/debug-kernel.sh builds or
 # finds it) or any name with an explicit KDIR. The sources are mirrored into
 # build/kmod/TARGET so that targets never share objects; a compiler warning
@@ -24,9 +25,10 @@ x86_64|x86_64-*)
 debug-6.12-rt|debug-6.1)
 	[ -n "$kdir" ] || kdir=$("$TOP/scripts/debug-kernel.sh" "${target#debug-}")/build
 	;;
-armhf|armel)
-	root=$(arm_tree "$target" "$(arm_flavour "$target")")
-	kdir=${kdir:-$(ls -d "$root"/usr/src/linux-headers-*-"$(arm_flavour "$target")" | head -1)}
+armhf|armel|armel-rpi)
+	flavour=$(arm_target_flavour "$target")
+	root=$(arm_tree "${target%%-*}" "$flavour")
+	kdir=${kdir:-$(ls -d "$root"/usr/src/linux-headers-*-"$flavour" | head -1)}
 	make_args+=(ARCH=arm CROSS_COMPILE="$(cross_prefix "$target")")
 	;;
 *)
@@ -38,7 +40,7 @@ esac
 # ts7800-can/sja1000-layout.c checks our copy of struct sja1000_priv against:
 # take it from linux-source-6.1 or -6.12, the source of those kernels.
 case $target in
-x86_64|armhf|armel)
+x86_64|armhf|armel|armel-rpi)
 	make_args+=(SJA1000_SRC="$("$TOP/scripts/kernel-source.sh" drivers/net/can/sja1000/sja1000.h)")
 	;;
 x86_64-6.12*)

@@ -16,6 +16,11 @@
 #                                  and the programs they start
 #   armhf   build/userland-armhf   cross (arm-linux-gnueabihf), -O2, no tests
 #   armel   build/userland-armel   cross (arm-linux-gnueabi, the TS-7800), -O2, no tests
+#   armel-tests build/userland-armel-tests  the armel build with the unit
+#                                  tests (GoogleTest of Debian's armel
+#                                  libgtest-dev: fetch-arm-sysroot.sh armel
+#                                  gtest), only what CTest runs; the armel VM
+#                                  lane runs them (vm-arm.sh --arch armel --cxx)
 # Full debug information (-g) costs a fifth of the compile time of every
 # file and five times the size of the binaries the VM tests package; nothing
 # here reads it.
@@ -44,7 +49,8 @@
 set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 
-variant=${1:?variant (native|asan|armhf|armel)}
+variant=${1:?variant (native|asan|armhf|armel|armel-tests)}
+arch=${variant%-tests}
 # Installed (scripts/install.sh) as a Debian package would be: /usr, /etc.
 args=(-G Ninja -S "$TOP/userland" -DCMAKE_INSTALL_PREFIX=/usr -DCMAKE_INSTALL_SYSCONFDIR=/etc
 	-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8)
@@ -60,11 +66,19 @@ asan)
 	args+=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
 		"-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DADVEE_SANITIZE=ON)
 	;;
-armhf|armel)
+armhf|armel|armel-tests)
 	dir=$BUILD/userland-$variant
-	args+=("${shipped[@]}" -DADVEE_BUILD_TESTS=OFF
-		-DCMAKE_TOOLCHAIN_FILE="$TOP/userland/cmake/$(cross_prefix "$variant" | sed 's/-$//').cmake"
-		-DADVEE_ARM_SYSROOT="$("$TOP/scripts/fetch-arm-sysroot.sh" "$variant")") ;;
+	args+=("${shipped[@]}"
+		-DCMAKE_TOOLCHAIN_FILE="$TOP/userland/cmake/$(cross_prefix "$arch" | sed 's/-$//').cmake"
+		-DADVEE_ARM_SYSROOT="$("$TOP/scripts/fetch-arm-sysroot.sh" "$arch")")
+	if [ "$variant" = "$arch" ]; then
+		args+=(-DADVEE_BUILD_TESTS=OFF)
+	else
+		# The tests are listed when CTest runs them (in the guest), not by
+		# running the ARM binaries at build time.
+		args+=(-DGTest_DIR="$("$TOP/scripts/fetch-arm-sysroot.sh" "$arch" gtest)/usr/lib/$(cross_prefix "$arch" | sed 's/-$//')/cmake/GTest"
+			-DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST)
+	fi ;;
 *) die "unknown userland variant $variant" ;;
 esac
 prefix_map="-ffile-prefix-map=$TOP/="
@@ -97,7 +111,7 @@ fi
 # The sanitizer build serves the unit tests only: what CTest runs (the
 # target advee_test_binaries of userland/CMakeLists.txt), not every program.
 targets=()
-[ "$variant" = asan ] && targets=(advee_test_binaries)
+case $variant in asan|*-tests) targets=(advee_test_binaries) ;; esac
 if ! { cmake -B "$dir" "${args[@]}" && ninja -C "$dir" "${targets[@]}"; } >"$log" 2>&1; then
 	tail -40 "$log" >&2
 	die "userland build ($variant) failed; full log: $log"
@@ -118,7 +132,7 @@ check_abi() {	# check_abi FILE: empty output when it fits $variant
 	desc=$(file -b "$f")
 	attrs=$(readelf -A "$f" 2>/dev/null)
 	case $desc in *"ELF 32-bit LSB"*"ARM, EABI5"*) ;; *) echo "$f: $desc"; return ;; esac
-	case $variant in
+	case $arch in
 	armhf)
 		case $desc in *executable*) [[ $desc == *ld-linux-armhf.so.3* ]] || echo "$f: not the armhf loader: $desc" ;; esac
 		grep -q 'Tag_ABI_VFP_args: VFP registers' <<<"$attrs" || echo "$f: not hard float"
@@ -130,7 +144,7 @@ check_abi() {	# check_abi FILE: empty output when it fits $variant
 		;;
 	esac
 }
-case $variant in
+case $arch in
 armhf|armel)
 	n=0 bad=
 	while IFS= read -r -d '' f; do
@@ -141,6 +155,6 @@ armhf|armel)
 	done < <(find "$dir" -type f \( -perm -u+x -o -name '*.so*' \) -not -path '*/CMakeFiles/*' -print0)
 	[ -z "$bad" ] || die "userland ($variant): wrong ABI: $bad"
 	[ "$n" -gt 0 ] || die "userland ($variant): no ELF file to check in $dir"
-	say "userland ($variant): $n ELF files, all $(case $variant in armhf) echo ARMv7 hard float ;; armel) echo ARMv5TE soft float ;; esac)"
+	say "userland ($variant): $n ELF files, all $(case $arch in armhf) echo ARMv7 hard float ;; armel) echo ARMv5TE soft float ;; esac)"
 	;;
 esac

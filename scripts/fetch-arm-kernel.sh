@@ -6,15 +6,19 @@
 # architecture to dpkg: apt runs with a private lists dir, an empty dpkg
 # status and only the Debian sources of this machine.
 #
-# usage: scripts/fetch-arm-kernel.sh DEBARCH FLAVOUR   e.g. armhf armmp, armel marvell
+# usage: scripts/fetch-arm-kernel.sh DEBARCH FLAVOUR   e.g. armhf armmp, armel marvell,
+#        armel rpi (the armel lane's kernel: QEMU has no Kirkwood/Orion machine)
 # prints the root of the extracted tree (contains usr/src/linux-headers-*,
-# lib/modules/*, boot/vmlinuz-*).
+# lib/modules/*, boot/vmlinuz-*). The architecture's build flavour (lib.sh:
+# arm_flavour) lives in $ADVEE_CACHE/arm/DEBARCH, another one in
+# $ADVEE_CACHE/arm/DEBARCH-FLAVOUR.
 set -euo pipefail
 
 debarch=${1:?debian architecture (armhf|armel)}
-flavour=${2:?kernel flavour (armmp|marvell)}
+flavour=${2:?kernel flavour (armmp|marvell|rpi)}
 . "$(dirname "$0")/lib.sh"
 cache=$ADVEE_CACHE/arm/$debarch
+[ "$flavour" = "$(arm_flavour "$debarch")" ] || cache=$cache-$flavour
 mkdir -p "$cache/debs"
 private_apt "$cache" "$debarch"
 
@@ -66,7 +70,8 @@ if ! apt-cache "${apt_opts[@]}" show "$img" >/dev/null 2>&1; then
 fi
 ver=$(apt-cache "${apt_opts[@]}" show "$img" | sed -n 's/^Version: //p' | sort -V | tail -1)
 pkgs=("$img=$ver" "linux-headers-$abi-$flavour=$ver" "linux-headers-$abi-common=$ver")
-[ "$debarch" = armhf ] && pkgs+=(busybox-static)
+# The flavours a VM lane boots get a static busybox for its initramfs.
+case $debarch-$flavour in armhf-armmp|armel-rpi) pkgs+=(busybox-static) ;; esac
 
 # Debian's headers depend on linux-kbuild-6.1 (>= their version): a newer host
 # kbuild of the same 6.1 series is what Debian itself accepts.

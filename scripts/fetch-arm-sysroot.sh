@@ -16,6 +16,25 @@ debarch=${1:?debian architecture (armhf|armel)}
 cache=$ADVEE_CACHE/arm/$debarch
 arm_apt_opts "$debarch"
 
+# fetch-arm-sysroot.sh DEBARCH gtest: Debian's DEBARCH GoogleTest (static
+# libraries, headers, CMake config) in a root of its own,
+# $ADVEE_CACHE/arm/DEBARCH/gtest/root, for build-userland.sh armel-tests.
+if [ "${2:-}" = gtest ]; then
+	g=$cache/gtest
+	gpkgs=(libgtest-dev libgmock-dev)
+	exec 8>"$cache/gtest.lock"
+	flock 8
+	if [ "$(cat "$g/root/.advee-packages" 2>/dev/null)" != "${gpkgs[*]}" ]; then
+		rm -rf "$g"
+		mkdir -p "$g/debs" "$g/root"
+		(cd "$g/debs" && apt-get "${apt_opts[@]}" download "${gpkgs[@]}" >/dev/null)
+		for deb in "$g"/debs/*.deb; do dpkg-deb -x "$deb" "$g/root"; done
+		echo "${gpkgs[*]}" >"$g/root/.advee-packages"
+	fi
+	echo "$g/root"
+	exit 0
+fi
+
 # The -dev packages and the runtime libraries behind every .so they link
 # (the cross toolchain brings libc, libstdc++, libgcc); the header-only ones
 # (Eigen, CLI11, nlohmann-json: Architecture all) too, so that find_package

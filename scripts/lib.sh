@@ -37,7 +37,7 @@ arm_tree() { "$TOP/scripts/fetch-arm-kernel.sh" "$1" "$2"; }
 cross_prefix() {
 	case $1 in
 	armhf) echo arm-linux-gnueabihf- ;;
-	armel) echo arm-linux-gnueabi- ;;
+	armel|armel-*) echo arm-linux-gnueabi- ;;
 	x86_64|native) echo "" ;;
 	*) die "unknown target $1" ;;
 	esac
@@ -49,6 +49,17 @@ arm_flavour() {
 	armhf) echo armmp ;;
 	armel) echo marvell ;;
 	*) die "no ARM flavour for $1" ;;
+	esac
+}
+
+# arm_target_flavour TARGET: the Debian kernel flavour of an ARM build target
+# (build-kmod.sh): armhf and armel are the architectures' own (arm_flavour),
+# armel-rpi is armel's rpi kernel, which the armel VM lane boots
+# (vm-arm.sh --arch armel: QEMU has no machine for the marvell kernel).
+arm_target_flavour() {
+	case $1 in
+	armel-rpi) echo rpi ;;
+	*) arm_flavour "$1" ;;
 	esac
 }
 
