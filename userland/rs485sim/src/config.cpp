@@ -50,7 +50,7 @@ class Loader {
       fail(n, field, e.what());
     }
   }
-  long integer(const YAML::Node& n, const std::string& field, long min, long max) const {
+  long long integer(const YAML::Node& n, const std::string& field, long long min, long long max) const {
     return value(n, field, [&](const std::string& s) { return parse_int(s, field.c_str(), min, max); });
   }
   double number(const YAML::Node& n, const std::string& field) const {
@@ -74,7 +74,7 @@ class Loader {
     if (!root.IsMap()) fail(root, "top level", "must be a mapping with 'buses'");
     check_keys(root, "top level", {"control", "seed", "buses"});
     if (root["control"]) cfg.control = value(root["control"], "control", [](const std::string& s) { return s; });
-    if (root["seed"]) cfg.seed = static_cast<std::uint32_t>(integer(root["seed"], "seed", 0, 0xffffffffL));
+    if (root["seed"]) cfg.seed = static_cast<std::uint32_t>(integer(root["seed"], "seed", 0, 0xffffffffLL));
     if (seed_) cfg.seed = *seed_;
     const auto buses = root["buses"];
     if (!buses) fail(root, "buses", "missing (a list of buses)");

@@ -108,10 +108,12 @@ double parse_double(const std::string& s, const char* what) {
   return v;
 }
 
-long parse_int(const std::string& s, const char* what, long min, long max) {
+// long long: 64 bits on every target (a long is 32 bits on ARM, where a
+// bound of 0xffffffff written as a long was -1 and refused every seed).
+long long parse_int(const std::string& s, const char* what, long long min, long long max) {
   char* end = nullptr;
   errno = 0;
-  const long v = std::strtol(s.c_str(), &end, 0);
+  const long long v = std::strtoll(s.c_str(), &end, 0);
   if (s.empty() || *end || errno)
     throw UsageError(std::string(what) + ": not an integer: '" + s + "'");
   if (v < min || v > max)

@@ -123,7 +123,7 @@ class Device {
 
 // Helpers shared by the models and the control commands.
 double parse_double(const std::string& s, const char* what);
-long parse_int(const std::string& s, const char* what, long min, long max);
+long long parse_int(const std::string& s, const char* what, long long min, long long max);
 void put_u16(std::vector<std::uint8_t>& v, std::uint16_t x);
 
 }  // namespace advee::rs485sim
