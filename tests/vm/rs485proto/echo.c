@@ -7,7 +7,11 @@
  * frame that the bus does not carry as sent (simulated by corrupting what
  * the UART transmits, which the node and the echo both see) is a collision:
  * counted, retried as a plain repeat, N_RS485_COLLISION when every attempt
- * collides. A missing echo is one as well.
+ * collides. A missing echo is one as well, also when the UART lost echo
+ * characters in an overrun (the discipline cannot tell): an emulated CPU
+ * under host load can miss 16 character times, so on the quiet line a
+ * collision is accepted only where the simulated UART counted an overrun,
+ * and the transfer is retried then.
  */
 #include "rs485-lib.h"
 
@@ -27,6 +31,8 @@ static int set_echo_flag(int fd, int on)
 int main(void)
 {
 	struct n_rs485_stats st0, st;
+	struct ts7800_sim_wire_stats ws0, ws;
+	unsigned long long overruns;
 	struct n_rs485_config cfg;
 	uint8_t data[N_RS485_MAX_DATA], buf[N_RS485_MAX_FRAME];
 	struct n_rs485_xfer x;
@@ -71,11 +77,14 @@ int main(void)
 	tap_ok(ret == 0 && cfg.flags == N_RS485_CFG_ECHO, "N_RS485_CFG_ECHO set and read back");
 
 	get_stats(fd, &st0);
-	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 255, 300000, 0);
-	tap_ok(ret == 0 && x.status == N_RS485_OK && x.attempts == 1 && x.resp.len == 255 &&
-	       !memcmp(x.resp.data, data, 255),
-	       "with it, 255 bytes echoed by the node come back byte-exact (status %u, attempts %u)",
-	       x.status, x.attempts);
+	wire_stats(s.wfd, &ws0);
+	ret = xfer(fd, &x, SLAVE_ADDR, I_ECHO, 0, data, 255, 300000, 2);
+	wire_stats(s.wfd, &ws);
+	overruns = ws.rx_overruns - ws0.rx_overruns;
+	tap_ok(ret == 0 && x.status == N_RS485_OK && (x.attempts == 1 || overruns) &&
+	       x.resp.len == 255 && !memcmp(x.resp.data, data, 255),
+	       "with it, 255 bytes echoed by the node come back byte-exact (status %u, attempts %u; more than one only after an overrun: %llu)",
+	       x.status, x.attempts, overruns);
 	ret = xfer(fd, &x, SLAVE_ADDR, I_SILENT, 0, NULL, 0, 20000, 2);
 	tap_ok(ret == 0 && x.status == N_RS485_TIMEOUT && x.attempts == 3,
 	       "a silent node: TIMEOUT after 3 attempts (status %u, attempts %u)",
@@ -89,9 +98,11 @@ int main(void)
 	ret = xfer(fd, &x, N_RS485_ADDR_BROADCAST, I_ECHO, 0, data, 3, N_RS485_DEFAULT, N_RS485_DEFAULT);
 	tap_ok(ret == 0 && x.status == N_RS485_OK, "broadcast: OK once its echo is back");
 	get_stats(fd, &st);
-	tap_ok(st.collisions == st0.collisions && st.unexpected == st0.unexpected,
-	       "no collision and no echo delivered as a frame (collisions +%llu, unexpected +%llu)",
-	       (unsigned long long)(st.collisions - st0.collisions),
+	wire_stats(s.wfd, &ws);
+	overruns = ws.rx_overruns - ws0.rx_overruns;
+	tap_ok(st.collisions - st0.collisions <= overruns && st.unexpected == st0.unexpected,
+	       "no collision but after an overrun, and no echo delivered as a frame (collisions +%llu, overruns +%llu, unexpected +%llu)",
+	       (unsigned long long)(st.collisions - st0.collisions), overruns,
 	       (unsigned long long)(st.unexpected - st0.unexpected));
 
 	/* One character of the request is changed on the line: a collision. */
