@@ -6,7 +6,8 @@
 # the other Kbuild dirs in KSRC_DIRS):
 #   1. W=1 builds without warnings for every supported kernel: amd64 6.1
 #      (x86_64), 6.12 and 6.12 PREEMPT_RT (x86_64-6.12, x86_64-6.12-rt; from
-#      bookworm-backports), armhf (armmp) and armel (marvell) 6.1, each
+#      bookworm-backports), armhf (armmp), armel (marvell, the TS-7800's)
+#      and armel rpi (the kernel the armel VM lane boots) 6.1, each
 #      checking ts-can1's copy of struct sja1000_priv against that kernel's
 #      sja1000.h (ts7800-can/sja1000-layout.c), and a self-test that this
 #      check rejects an altered copy;
@@ -38,7 +39,7 @@ row() {	# row NAME ok|fail REASON
 
 # 1. W=1 (build-kmod.sh fails on any compiler warning)
 amd64_targets=$(for k in $AMD64_KERNELS; do amd64_target "$k"; done)
-for t in $amd64_targets armhf armel; do
+for t in $amd64_targets armhf armel armel-rpi; do
 	start=$(date +%s)
 	if out=$("$TOP/scripts/build-kmod.sh" "$t" 2>&1); then
 		row "W=1 build, $t" ok
