@@ -50,7 +50,10 @@ tap_is "the master serves its dictionary as node 127: 0x1017 is its 100 ms heart
 # on past the last command to see the timeout.
 listen_bg "$SCR/move.out" LL_DATA_DRIVES CM_DATA_ERROR
 "$PROBE" motion 0.5 0.1 10 3.5 >"$SCR/motion1.out"
-wait_line "$SCR/move.out" '^LL_DATA_DRIVES .* reason=command_timeout ' 10 >/dev/null
+# Until the quick stop's ramp has ended: the first reports after the
+# timeout still show the speed coming down (0.4597 m/s in a fresh-clone run
+# of 28 Nov under load).
+wait_line "$SCR/move.out" '^LL_DATA_DRIVES .* speed=0.0000 .* reason=command_timeout ' 10 >/dev/null
 wait_line "$SCR/move.out" ' number=2 ' 5 >/dev/null
 listen_stop
 candump_sync
