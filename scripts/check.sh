@@ -166,6 +166,13 @@ host_checks() {
 	[ -s "$RESULTS/web.tsv" ] ||
 		printf 'web: browser check did not run\t0\t1\t0\tfail\tsee output above\n' >>"$RESULTS/stages.tsv"
 	debs_check
+	# The CANopen example of docs/canopen.md built against a staged install
+	# of the plain build's libadvee-dev files (CMake package and pkg-config);
+	# the ASan build, the only one with tests here, cannot link it.
+	stage "CANopen example against the installed library" "$TOP/userland/canopen/examples/build-against-install.sh" \
+		"$BUILD/userland" "$BUILD/canopen-example" \
+		"$(sed -n 's/^CMAKE_INSTALL_LIBDIR:PATH=//p' "$BUILD/userland/CMakeCache.txt")" c++
+	stage_row "CANopen example builds against the staged install (find_package, pkg-config)" $?
 }
 debs_check() {	# the packages of the stage "Debian packages": lintian, programs
 	stage "Debian packages: lintian" lintian --fail-on error,warning "$BUILD"/debs/advee_*.changes
@@ -245,8 +252,8 @@ full)
 	# up to three guests (each with 2 vCPUs) run next to the host's builds
 	# (CPU-bound, at a lower priority). Each kernel suite runs on 6.12
 	# PREEMPT_RT (the debug lane), on 6.1 (the armhf lane if portable) and
-	# on stock 6.12, or on stock 6.1 and 6.12-rt (docs/kernels.md); the
-	# other suites on Debian's 6.1:
+	# on stock 6.12 or 6.12-rt, some also on stock 6.1 (stock_6_1=1;
+	# docs/kernels.md); the other suites on Debian's 6.1:
 	#   vm      the kernel suites on stock 6.12, then those on stock 6.1,
 	#           then the armhf lane, then the two-computer test (two guests
 	#           at once, about 3 min), then the armel cross build (this
