@@ -242,6 +242,20 @@ int main(int argc, char** argv) {
       speed = v;
       stream.start();
     };
+    // Steps: drive at 0.5 m/s, and after 1.5 s the EPOS's TxPDO4 reports it.
+    auto drive_and_measure = [&] {
+      script
+          .then("drive at 0.5 m/s", [&](auto d) {
+            drive_at(0.5);
+            d({});
+          })
+          .wait(1500ms)
+          .then("EPOS reports 0.5 m/s on TxPDO4", [&](auto d) {
+            const auto v = epos.speed();
+            std::printf("# measured %.4f m/s\n", v.value_or(NAN));
+            d(check(v && std::fabs(*v - 0.5) < 0.005));
+          });
+    };
     auto events = [&](const DriveEvent& e) {
       std::printf("# event: %s\n", e.text.c_str());
       if (e.kind == DriveEventKind::kHeartbeatLost && scenario == "hb-loss") {
@@ -285,18 +299,9 @@ int main(int argc, char** argv) {
       script.then("enable EPOS", [&](auto d) { epos.enable(d); })
           .then("enable IclA", [&](auto d) { icla.enable(d); })
           .then("IclA homing on the home switch", [&](auto d) { icla.home(d); })
-          .then("IclA position is the home offset", [&](auto d) { d(check(icla.angle() && *icla.angle() == 0.0)); })
-          .then("drive at 0.5 m/s", [&](auto d) {
-            drive_at(0.5);
-            d({});
-          })
-          .wait(1500ms)
-          .then("EPOS reports 0.5 m/s on TxPDO4", [&](auto d) {
-            const auto v = epos.speed();
-            std::printf("# measured %.4f m/s\n", v.value_or(NAN));
-            d(check(v && std::fabs(*v - 0.5) < 0.005));
-          })
-          .then("stop", [&](auto d) {
+          .then("IclA position is the home offset", [&](auto d) { d(check(icla.angle() && *icla.angle() == 0.0)); });
+      drive_and_measure();
+      script.then("stop", [&](auto d) {
             speed = 0;
             d({});
           })
@@ -354,21 +359,12 @@ int main(int argc, char** argv) {
         });
       });
       boot_epos();
-      script.then("enable EPOS", [&](auto d) { epos.enable(d); })
-          .then("drive at 0.5 m/s", [&](auto d) {
-            drive_at(0.5);
-            d({});
-          })
-          .wait(1500ms)
-          .then("EPOS reports 0.5 m/s on TxPDO4", [&](auto d) {
-            const auto v = epos.speed();
-            std::printf("# measured %.4f m/s\n", v.value_or(NAN));
-            d(check(v && std::fabs(*v - 0.5) < 0.005));
-          })
-          .then("disable EPOS", [&](auto d) {
-            stream.stop();
-            epos.drive().disable(d);
-          });
+      script.then("enable EPOS", [&](auto d) { epos.enable(d); });
+      drive_and_measure();
+      script.then("disable EPOS", [&](auto d) {
+        stream.stop();
+        epos.drive().disable(d);
+      });
     } else {
       std::fprintf(stderr, "canopen-scenario: unknown scenario '%s'\n", scenario.c_str());
       return 2;
