@@ -27,6 +27,24 @@ CanFrame emcy_frame(const Emcy& e) {
   return f;
 }
 
+std::uint8_t error_register_bits(std::uint16_t code) {
+  if (code == 0) return 0;
+  std::uint8_t bits = 0x01;
+  switch (code >> 12) {
+    case 0x2: bits |= 0x02; break;
+    case 0x3: bits |= 0x04; break;
+    case 0x4: bits |= 0x08; break;
+    case 0x8:
+      if ((code >> 8) == 0x81 || (code >> 8) == 0x82) bits |= 0x10;
+      break;
+    case 0xF:
+      if ((code >> 8) == 0xFF) bits |= 0x80;
+      break;
+    default: break;
+  }
+  return bits;
+}
+
 std::string_view emcy_class(std::uint16_t code) {
   switch (code >> 12) {
     case 0x0: return (code >> 8) == 0 ? "no error" : "unknown";

@@ -64,6 +64,23 @@ void Master::send_emcy(std::uint16_t code, std::uint8_t error_register, std::arr
   send_(emcy_frame({cfg_.node_id, code, error_register, vendor}));
 }
 
+std::uint8_t Master::error_register() const {
+  std::uint8_t r = 0;
+  for (const auto code : active_errors_) r |= error_register_bits(code);
+  return r;
+}
+
+void Master::set_error(std::uint16_t code, bool active) {
+  if (code == 0 || active == error_active(code)) return;
+  if (active)
+    active_errors_.insert(code);
+  else
+    active_errors_.erase(code);
+  const std::uint8_t reg = error_register();
+  od_.set<std::uint8_t>(0x1001, 0, reg);
+  if (nmt_state_ != NmtState::kStopped) send_(emcy_frame({cfg_.node_id, active ? code : std::uint16_t{0}, reg, {}}));
+}
+
 void Master::set_heartbeat_period(Duration period) {
   if (period.count() > 0 && !booted_up_) {
     booted_up_ = true;

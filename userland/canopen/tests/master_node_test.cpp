@@ -144,6 +144,57 @@ TEST_F(MasterNodeTest, EmcySetsTheErrorRegister) {
   EXPECT_EQ(read32(0x1001, 0).second, 0u);
 }
 
+TEST_F(MasterNodeTest, OwnErrorsAreSentOnceWithTheRegisterOfAllActiveErrors) {
+  seen.clear();
+  master->set_error(kEmcyHeartbeatError, true);
+  master->set_error(kEmcyHeartbeatError, true);  // no change: no frame
+  bus.deliver();
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0], make_frame(0x0FF, {0x30, 0x81, 0x11, 0, 0, 0, 0, 0})) << "generic + communication";
+  EXPECT_EQ(read32(0x1001, 0).second, 0x11u);
+  seen.clear();
+  master->set_error(0x4210, true);  // a temperature error on top
+  master->set_error(kEmcyHeartbeatError, false);
+  bus.deliver();
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(seen[0], make_frame(0x0FF, {0x10, 0x42, 0x19, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(seen[1], make_frame(0x0FF, {0x00, 0x00, 0x09, 0, 0, 0, 0, 0}))
+      << "the reset carries the register of the error still active";
+  EXPECT_TRUE(master->error_active(0x4210));
+  EXPECT_FALSE(master->error_active(kEmcyHeartbeatError));
+  seen.clear();
+  master->set_error(kEmcyHeartbeatError, false);  // not active: no frame
+  master->set_error(0, true);                      // code 0 is no error
+  master->set_error(0x4210, false);
+  bus.deliver();
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0], make_frame(0x0FF, {0, 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(read32(0x1001, 0).second, 0u);
+}
+
+TEST_F(MasterNodeTest, AStoppedMasterSendsNoEmcyButKeepsItsRegister) {
+  master->set_nmt_state(NmtState::kStopped);
+  seen.clear();
+  master->set_error(kEmcyCanErrorPassive, true);
+  bus.deliver();
+  for (const CanFrame& f : seen) EXPECT_NE(f.id, 0x080u + kMasterNode) << "EMCY while stopped";
+  EXPECT_EQ(master->error_register(), 0x11);
+  master->set_nmt_state(NmtState::kOperational);
+  EXPECT_EQ(read32(0x1001, 0).second, 0x11u);
+}
+
+TEST(ErrorRegister, BitsFollowTheErrorClass) {
+  EXPECT_EQ(error_register_bits(0x0000), 0x00);
+  EXPECT_EQ(error_register_bits(0x1000), 0x01);
+  EXPECT_EQ(error_register_bits(0x2310), 0x03);
+  EXPECT_EQ(error_register_bits(0x3210), 0x05);
+  EXPECT_EQ(error_register_bits(0x4310), 0x09);
+  EXPECT_EQ(error_register_bits(0x8120), 0x11);
+  EXPECT_EQ(error_register_bits(0x8210), 0x11);
+  EXPECT_EQ(error_register_bits(0x8310), 0x01);
+  EXPECT_EQ(error_register_bits(0xFF01), 0x81);
+}
+
 TEST_F(MasterNodeTest, ASilentMasterServesNoSdo) {
   master = make(Duration{});
   seen.clear();

@@ -23,7 +23,10 @@ CanbusDriver::CanbusDriver(module::Module& m, const CanbusConfig& cfg) : m_(m), 
   mc.heartbeat_period = cfg_.master_heartbeat;
   try {
     runtime_ = std::make_unique<canopen::MasterRuntime>(loop_, cfg_.interface, mc, [this](const canopen::CanErrorInfo& e) {
-      if (auto r = bus_state_.on_error(e)) m_.errors().report(r->severity, module::ErrorType::Device, kErrBus, r->text);
+      auto r = bus_state_.on_error(e);
+      if (!r) return;
+      m_.errors().report(r->severity, module::ErrorType::Device, kErrBus, r->text);
+      for (const auto& [code, active] : r->emcy) runtime_->master().set_error(code, active);
     });
   } catch (const std::system_error& e) {
     throw ModuleExit(ExitKind::Device, kExitNoInterface,

@@ -114,6 +114,10 @@ void DriveController::boot(Unit& u, std::function<void(bool)> then) {
   });
 }
 
+void DriveController::update_heartbeat_error() {
+  master_.set_error(canopen::kEmcyHeartbeatError, prop_.heartbeat_lost || steer_.heartbeat_lost);
+}
+
 void DriveController::on_drive_event(Unit& u, const DriveEvent& e) {
   switch (e.kind) {
     case DriveEventKind::kEmcy:
@@ -139,6 +143,8 @@ void DriveController::on_drive_event(Unit& u, const DriveEvent& e) {
     case DriveEventKind::kHeartbeatLost:
       if (!u.online) return;
       u.online = false;
+      u.heartbeat_lost = true;
+      update_heartbeat_error();
       report(Severity::Error, ErrorType::Timeout, kErrHeartbeatLost, u.name + ": heartbeat lost");
       if (u.axis == Axis::kSteering) {
         moving_ = false;
@@ -152,11 +158,15 @@ void DriveController::on_drive_event(Unit& u, const DriveEvent& e) {
     case DriveEventKind::kHeartbeatResumed:
       if (u.booting || !u.drive->booted()) return;
       u.online = true;
+      u.heartbeat_lost = false;
+      update_heartbeat_error();
       report(Severity::Notice, ErrorType::Timeout, kErrHeartbeatResumed, u.name + ": heartbeat resumed");
       return;
     case DriveEventKind::kRebooted:
       u.online = false;
       u.emcy = 0;
+      u.heartbeat_lost = false;  // it is back; a failed boot is reported as such
+      update_heartbeat_error();
       report(Severity::Warning, ErrorType::Device, kErrRebooted,
              u.name + ": drive rebooted (boot-up message), booting it again" +
                  (u.axis == Axis::kSteering ? "; the steering must be homed again" : ""));

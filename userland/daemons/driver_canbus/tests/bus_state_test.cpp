@@ -46,5 +46,19 @@ TEST(BusStateTest, PassiveAndWarningAreWarnings) {
   EXPECT_EQ(p->text, "CAN controller vcan0: error-passive");
 }
 
+using Changes = std::vector<std::pair<std::uint16_t, bool>>;
+
+TEST(BusStateTest, TheMasterReportsPassiveAndBusOffAsItsOwnEmcy) {
+  BusStateReporter r("can0");
+  EXPECT_EQ(r.on_error(state(CanControllerState::kErrorWarning))->emcy, Changes{}) << "warning is no EMCY error";
+  EXPECT_EQ(r.on_error(state(CanControllerState::kErrorPassive))->emcy, (Changes{{0x8120, true}}));
+  EXPECT_EQ(r.on_error(state(CanControllerState::kBusOff))->emcy, (Changes{{0x8140, true}, {0x8120, false}}))
+      << "raised before cleared: the reset's register still shows the bus-off";
+  EXPECT_EQ(r.on_error(state(CanControllerState::kErrorActive))->emcy, (Changes{{0x8140, false}}));
+  EXPECT_EQ(r.on_error(state(CanControllerState::kBusOff))->emcy, (Changes{{0x8140, true}}));
+  EXPECT_EQ(r.on_error(state(CanControllerState::kErrorPassive))->emcy,
+            (Changes{{0x8120, true}, {0x8140, false}}));
+}
+
 }  // namespace
 }  // namespace advee::driver_canbus

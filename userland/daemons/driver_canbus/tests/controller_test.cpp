@@ -382,6 +382,35 @@ TEST_F(ControllerTest, HeartbeatLossIsReportedAndStopsThePropulsionWhenTheSteeri
   EXPECT_NEAR(ctl->status().speed_mps, 0.3, 1e-3);
 }
 
+// The master's own EMCY (0x0FF here): 0x8130 with the error register's
+// communication bit while a drive's heartbeat is lost, the reset when it is back.
+TEST_F(ControllerTest, AHeartbeatLossIsTheMastersOwnEmcyUntilTheDriveIsBack) {
+  ASSERT_TRUE(start());
+  const auto master_emcy = [this] {
+    std::vector<std::array<std::uint8_t, 3>> out;
+    for (const auto& f : bus.log())
+      if (f.id == 0x0FF) out.push_back({f.data[0], f.data[1], f.data[2]});
+    return out;
+  };
+  EXPECT_TRUE(master_emcy().empty()) << "no EMCY while both drives are there";
+  epos_sim.faults().heartbeat_silent = true;
+  icla_sim.faults().heartbeat_silent = true;
+  run(500ms);
+  EXPECT_EQ(count(kErrHeartbeatLost), 2);
+  ASSERT_EQ(master_emcy().size(), 1u) << "one EMCY for two lost drives";
+  EXPECT_EQ(master_emcy()[0], (std::array<std::uint8_t, 3>{0x30, 0x81, 0x11}));
+  EXPECT_TRUE(master.error_active(canopen::kEmcyHeartbeatError));
+  epos_sim.faults().heartbeat_silent = false;
+  run(300ms);
+  EXPECT_EQ(master_emcy().size(), 1u) << "the IclA is still lost";
+  icla_sim.faults().heartbeat_silent = false;
+  icla_sim.power_on();  // comes back by rebooting
+  run(1000ms);
+  ASSERT_EQ(master_emcy().size(), 2u);
+  EXPECT_EQ(master_emcy()[1], (std::array<std::uint8_t, 3>{0x00, 0x00, 0x00}));
+  EXPECT_FALSE(master.error_active(canopen::kEmcyHeartbeatError));
+}
+
 TEST_F(ControllerTest, ARebootedDriveIsBootedAgainAndMovesOnTheNextCommand) {
   ASSERT_TRUE(start());
   ASSERT_TRUE(home());

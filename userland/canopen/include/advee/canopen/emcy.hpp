@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
-// EMCY consumer side: decoding of the emergency frame 0x080 + node
-// (canopen-notes.md §3.7).
+// The emergency frame 0x080 + node (canopen-notes.md §3.7): decoding for
+// the consumer side, the frame and the error register for producers.
 #pragma once
 
 #include <array>
@@ -21,6 +21,19 @@ struct Emcy {
 
   bool is_reset() const { return code == 0; }
 };
+
+// CiA 301 error codes of the communication (0x81xx) a CANopen node reports
+// about itself.
+inline constexpr std::uint16_t kEmcyCanErrorPassive = 0x8120;
+inline constexpr std::uint16_t kEmcyHeartbeatError = 0x8130;  // life guard or heartbeat error
+inline constexpr std::uint16_t kEmcyBusOffRecovered = 0x8140;
+
+// The bits of the error register (0x1001) an active error code sets (CiA 301
+// 7.5.2.2): bit 0 (generic) for every error, plus current (1), voltage (2),
+// temperature (3), communication (4: codes 0x81xx and 0x82xx) and
+// manufacturer specific (7: 0xFFxx). Bit 5 (device profile) is left to the
+// profile's own codes, which this function does not know. 0 for code 0.
+std::uint8_t error_register_bits(std::uint16_t code);
 
 // nullopt if the frame is not an EMCY (SYNC 0x080 is not one).
 std::optional<Emcy> decode_emcy(const CanFrame& f);

@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <unordered_map>
 #include <vector>
 
@@ -115,6 +116,15 @@ class Master {
   // EMCY of the master itself (0x080 + node_id), with the error register
   // (0x1001) it leaves; code 0 is the error reset.
   void send_emcy(std::uint16_t code, std::uint8_t error_register, std::array<std::uint8_t, 5> vendor = {});
+  // The master's own faults, as a CiA 301 EMCY producer: an error that
+  // becomes active sends its code with the register of every active error
+  // (0x1001 follows); one that clears sends the error reset 0x0000 with the
+  // register of those still active. Setting a code to the state it has sends
+  // nothing. While the master is NMT stopped no EMCY goes out (CiA 301), the
+  // register still follows.
+  void set_error(std::uint16_t code, bool active);
+  bool error_active(std::uint16_t code) const { return active_errors_.contains(code); }
+  std::uint8_t error_register() const;
   // The master's own dictionary and its SDO server (tests, tools).
   const ObjectDictionary& dictionary() const { return od_; }
   SdoServer& sdo_server() { return sdo_server_; }
@@ -155,6 +165,7 @@ class Master {
   FrameListener observer_;
   NmtState nmt_state_ = NmtState::kPreOperational;
   bool booted_up_ = false;  // the boot-up message went out
+  std::set<std::uint16_t> active_errors_;  // set_error()
 };
 
 }  // namespace advee::canopen

@@ -102,6 +102,7 @@ class DriveController final : public canopen::TimedService {
     std::string name;
     bool booting = false;
     bool online = false;  // booted and heartbeat present
+    bool heartbeat_lost = false;  // since the loss, until it resumes or the drive reboots
     bool enabling = false;
     std::int32_t emcy = 0;
     std::optional<canopen::TimePoint> reboot_at;      // boot again then
@@ -110,6 +111,9 @@ class DriveController final : public canopen::TimedService {
 
   void boot(Unit& u, std::function<void(bool)> then);
   void on_drive_event(Unit& u, const canopen::DriveEvent& e);
+  // The master's own EMCY 0x8130 (heartbeat error) is active while a drive's
+  // heartbeat is lost.
+  void update_heartbeat_error();
   // Enables the drive (fault reset included) unless held, then on_enabled().
   void ensure_enabled(Unit& u);
   // Sends what waited for the drive: the speed, the homing, the steering.
