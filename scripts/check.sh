@@ -166,13 +166,6 @@ host_checks() {
 	[ -s "$RESULTS/web.tsv" ] ||
 		printf 'web: browser check did not run\t0\t1\t0\tfail\tsee output above\n' >>"$RESULTS/stages.tsv"
 	debs_check
-	# The CANopen example of docs/canopen.md built against a staged install
-	# of the plain build's libadvee-dev files (CMake package and pkg-config);
-	# the ASan build, the only one with tests here, cannot link it.
-	stage "CANopen example against the installed library" "$TOP/userland/canopen/examples/build-against-install.sh" \
-		"$BUILD/userland" "$BUILD/canopen-example" \
-		"$(sed -n 's/^CMAKE_INSTALL_LIBDIR:PATH=//p' "$BUILD/userland/CMakeCache.txt")" c++
-	stage_row "CANopen example builds against the staged install (find_package, pkg-config)" $?
 }
 debs_check() {	# the packages of the stage "Debian packages": lintian, programs
 	stage "Debian packages: lintian" lintian --fail-on error,warning "$BUILD"/debs/advee_*.changes
@@ -214,6 +207,14 @@ esac
 # test binaries would only repeat what the ASan build runs.
 ADVEE_UNIT_TESTS=0 stage "userland (native)" "$TOP/scripts/build-userland.sh" native
 stage_row "userland (native)" $?
+# The CANopen example of docs/canopen.md built against a staged install of
+# that build's libadvee-dev files (CMake package and pkg-config); the ASan
+# build, the only one with tests here, cannot link it. Before the lanes (a
+# few seconds): canopen/dcf-download runs it against a simulated node.
+stage "CANopen example against the installed library" "$TOP/userland/canopen/examples/build-against-install.sh" \
+	"$BUILD/userland" "$BUILD/canopen-example" \
+	"$(sed -n 's/^CMAKE_INSTALL_LIBDIR:PATH=//p' "$BUILD/userland/CMakeCache.txt")" c++
+stage_row "CANopen example builds against the staged install (find_package, pkg-config)" $?
 # The Debian packages of that build (debian/rules reuses it: 21-36 s on a
 # loaded 2-core machine), before the tracks: the install suite installs them
 # (make check TEST=install[/debs] builds them too, other selections do not).

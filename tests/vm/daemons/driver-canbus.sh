@@ -7,14 +7,15 @@
 # quick-stop controlword to node 1 on candump 1.0-1.5 s after the last
 # command, the homing gate and homing, LL_EVENT_STOP holds until released,
 # PAUSE/RUN, a killed IclA simulator reported and booted again when it comes
-# back, SIGTERM, and exit 0x22 when the drives do not answer; the master's
+# back (with the master's own EMCY 0x8130 and its reset), SIGTERM, and exit
+# 0x22 when the drives do not answer; the master's
 # own dictionary read over SDO (canopenctl).
 . "$(dirname "$0")/lib.sh"
 . "$VMTEST_REPO/tests/lib/candump.sh"
 
 canbus_up "$DRIVER_CANBUS" "$PROBE" "$LCMCTL"
 
-tap_plan 23
+tap_plan 24
 
 # drives FILE KEY: KEY of the last LL_DATA_DRIVES line in FILE.
 drives() { field "$(grep '^LL_DATA_DRIVES ' "$1" | tail -1)" "$2"; }
@@ -152,6 +153,12 @@ grep '^CM_DATA_ERROR ' "$SCR/back.out" | sed 's/^/# /'
 tap_is "restarted IclA: reboot reported (9), booted again (10), enabled, not homed" \
 	"$(errors_numbered "$SCR/back.out" 9) $(errors_numbered "$SCR/back.out" 10) $(drives "$SCR/back.out" node2) $(drives "$SCR/back.out" homed2)" \
 	"1 1 operation_enabled 0"
+# The master's own EMCY (node 127): heartbeat error 0x8130 with the error
+# register's generic and communication bits, then the error reset.
+candump_sync
+master_emcy=$(grep -o ' 0FF#[0-9A-F]*' "$SCR/candump.log" | tr -d ' ' | tr '\n' ' ')
+tap_is "the master's EMCY: 0x8130 while the IclA was lost, the reset when it was back" \
+	"$master_emcy" "0FF#3081110000000000 0FF#0000000000000000 "
 
 # 7. SIGTERM.
 kill -TERM "$D"

@@ -524,7 +524,8 @@ DescriptionResult Parser::run(std::string_view text) {
 }  // namespace
 
 std::string DescriptionError::text() const {
-  return file + ":" + std::to_string(line) + ": " + message;
+  // GNU style: "file:line: message", "file: message" for the whole file.
+  return line == 0 ? file + ": " + message : file + ":" + std::to_string(line) + ": " + message;
 }
 
 std::optional<std::string> DeviceDescription::value(const Section& s, std::string_view key) {

@@ -311,7 +311,9 @@ void SdoClient::on_block_upload_response(const CanFrame& f) {
     if ((b0 & kBlockSubMask) != (kScsBlockUpload | kBlockEndSub)) return abort_local(SdoAbort::kUnknownCommand);
     const std::size_t unused = (b0 >> 2) & 7;
     if (unused > received_.size()) return abort_local(SdoAbort::kTooShort);
-    received_.resize(received_.size() - unused);
+    // erase, not resize: GCC 12 sees resize()'s growing path and warns
+    // (stringop-overflow) though the vector only shrinks here.
+    received_.erase(received_.end() - static_cast<std::ptrdiff_t>(unused), received_.end());
     if (upload_size_ && received_.size() < *upload_size_) return abort_local(SdoAbort::kTooShort);
     if (upload_size_ && received_.size() > *upload_size_) return abort_local(SdoAbort::kTooLong);
     if (crc_ && load_le<std::uint16_t>(std::span(f.data).subspan(1, 2)) != sdo_block_crc(received_))

@@ -5,9 +5,13 @@
 // "if_nametoindex nosuchcan0" with it; a usage error is exit 2).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -65,6 +69,50 @@ TEST(CanopenctlCliTest, ValidArgumentsReachTheSocket) {
     EXPECT_EQ(r.status, 1) << "canopenctl " << args << ":\n" << r.out;
     EXPECT_TRUE(tried_io(r.out)) << "canopenctl " << args << ":\n" << r.out;
   }
+}
+
+// dcf: the file is read and checked before the socket is opened; an
+// unreadable or invalid file is a runtime failure (1), a bad node a usage
+// error (2); `dcf concise` needs no bus.
+TEST(CanopenctlCliTest, DcfChecksItsFileBeforeAnyIoAndConciseNeedsNoBus) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("canopenctl-dcf-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string eds = std::string(CANOPEN_DATA) + "/epos-70-10.eds";
+  const std::string cdcf = (dir / "epos.cdcf").string();
+  {
+    std::ofstream(dir / "garbled.dcf") << "[MandatoryObjects]\nSupportedObjects=1\n1=0x1000\n[1000]\n"
+                                         "ParameterName=Device type\nDataType=0x0007\nAccessType=ro\nDefaultValue=12x\n";
+    std::ofstream(dir / "cut.cdcf", std::ios::binary).write("\x02\x00\x00\x00\x17\x10\x00\x02", 8);
+  }
+  struct Case {
+    std::string args;
+    int status;
+    const char* says;
+  };
+  const std::vector<Case> cases = {
+      {"dcf download 128 " + eds, 2, "128"},
+      {"dcf download 1", 2, "file"},
+      {"dcf download 1 " + (dir / "missing.dcf").string(), 1, "No such file"},
+      {"dcf download 1 " + (dir / "garbled.dcf").string(), 1, "garbled.dcf:8: "},
+      {"dcf download 1 " + (dir / "cut.cdcf").string(), 1, "not a valid concise DCF: byte 0: entry count 2"},
+      {"dcf download --attempts 0 1 " + eds, 2, "attempts"},
+      {"dcf concise 1 " + eds, 2, "out"},
+      {"dcf concise 1 " + eds + " " + cdcf, 0, "0 objects, 4 bytes"},
+      {"dcf concise 1 " + cdcf + " " + (dir / "again.cdcf").string(), 2, "is a concise DCF already"},
+      {"dcf concise 1 " + eds + " " + (dir / "no/such/dir.cdcf").string(), 1, "No such file"},
+  };
+  for (const Case& c : cases) {
+    const Outcome r = canopenctl("-i nosuchcan0 " + c.args);
+    EXPECT_EQ(r.status, c.status) << "canopenctl " << c.args << ":\n" << r.out;
+    EXPECT_FALSE(tried_io(r.out)) << "canopenctl " << c.args << " opened the socket:\n" << r.out;
+    EXPECT_NE(r.out.find(c.says), std::string::npos) << "canopenctl " << c.args << ":\n" << r.out;
+  }
+  for (const std::string& file : {eds, cdcf}) {
+    const Outcome r = canopenctl("-i nosuchcan0 dcf download --no-start 1 " + file);
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_TRUE(tried_io(r.out)) << "a valid file reaches the socket: " << file << "\n" << r.out;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(CanopenctlCliTest, HelpExits0) {

@@ -343,7 +343,7 @@ TEST(DeviceDescriptionTest, DuplicateSectionAndMissingFile) {
   EXPECT_NE(r.errors[0].message.find("is already at line " + std::to_string(line_of(dup, "[1000]"))), std::string::npos);
   const DescriptionResult m = load_device_description("/nonexistent/x.eds");
   ASSERT_EQ(m.errors.size(), 1u);
-  EXPECT_EQ(m.errors[0].text().rfind("/nonexistent/x.eds:0: expected a readable file", 0), 0u) << m.errors[0].text();
+  EXPECT_EQ(m.errors[0].text().rfind("/nonexistent/x.eds: expected a readable file", 0), 0u) << m.errors[0].text();
   const DescriptionResult empty = parse_device_description("", "empty.eds");
   ASSERT_EQ(empty.errors.size(), 1u);
   EXPECT_NE(empty.errors[0].message.find("expected objects"), std::string::npos);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
 // canopenctl: command-line CANopen master tool on SocketCAN. NMT commands,
 // typed SDO read/write (block transfer too), a scan of the nodes that answer
-// with their identity, LSS (CiA 305: fastscan, node-ID by identity), PDO
+// with their identity, LSS (CiA 305: fastscan, node-ID by identity), a node
+// configured from its DCF or concise DCF (CiA 302-2 boot), PDO
 // dump and remap, CiA 402 status and power control, live traffic and
 // heartbeat monitors. Every argument is checked before the
 // CAN socket is opened. Exit status (advee/cli.hpp) 0 on success and after --help and
@@ -20,6 +21,7 @@
 #include "advee/canopen/pdo_config.hpp"
 #include "advee/canopen/runtime.hpp"
 #include "advee/cli.hpp"
+#include "canopenctl_dcf.hpp"
 #include "canopenctl_lss.hpp"
 #include "canopenctl_text.hpp"
 
@@ -49,6 +51,7 @@ struct Command {
   std::pair<std::uint8_t, std::uint8_t> nodes{1, 127};  // scan
   PdoMapping pdo;  // pdo remap
   LssCommand lss;
+  DcfCommand dcf;
 };
 
 struct Args {
@@ -62,6 +65,7 @@ struct Args {
   int pdo_type = 255;
   bool pdo_disabled = false;
   LssArgs lss;
+  DcfArgs dcf;
 };
 
 // The object and type arguments of read/write and block read/write.
@@ -119,9 +123,10 @@ void describe(CLI::App& app, Args& a) {
   auto* hb = app.add_subcommand("hb", "heartbeats and boot-ups with the NMT state they report");
   hb->add_option("count", a.count, "heartbeats (default: until interrupted)")->check(CLI::Range(1L, 1000000000L));
   describe_lss(app, a.lss);
+  describe_dcf(app, a.dcf);
 }
 
-// Throws UsageError.
+// Throws UsageError, or FileError for a file that cannot be read or is invalid.
 Command check(const std::string& name, const Args& a) {
   Command c;
   c.name = name;
@@ -137,6 +142,10 @@ Command check(const std::string& name, const Args& a) {
   if (name == "monitor" || name == "hb") return c;
   if (name.rfind("lss ", 0) == 0) {
     c.lss = check_lss(name, a.lss);
+    return c;
+  }
+  if (name.rfind("dcf ", 0) == 0) {
+    c.dcf = check_dcf(name, a.dcf);
     return c;
   }
   if (name == "scan") {
@@ -209,9 +218,13 @@ int main(int argc, char** argv) {
     command = check(name, a);
   } catch (const UsageError& e) {
     return advee::cli::usage_error(app, e.what());
+  } catch (const FileError& e) {
+    std::fprintf(stderr, "canopenctl: %s\n", e.what());
+    return advee::cli::kExitFailure;
   }
   const Command& c = command;
   const std::string& cmd = c.name;
+  if (cmd == "dcf concise") return write_concise(c.dcf);  // no bus
 
   int rc = 0;
   try {
@@ -246,6 +259,7 @@ int main(int argc, char** argv) {
     };
     std::unique_ptr<StatusPoller> poller;
     std::unique_ptr<LssMaster> lss;
+    std::unique_ptr<NodeBoot> dcf_boot;
 
     const std::uint8_t node = c.node;
     if (cmd == "nmt") {
@@ -332,6 +346,11 @@ int main(int argc, char** argv) {
         });
       };
       poller = std::make_unique<StatusPoller>(master, read_status);
+    } else if (cmd == "dcf download") {
+      dcf_boot = run_dcf_download(master, c.dcf, [&](int status) {
+        rc = status;
+        loop.stop();
+      });
     } else if (cmd.rfind("lss ", 0) == 0) {
       lss = run_lss(master, c.lss, [&](int status) {
         rc = status;
