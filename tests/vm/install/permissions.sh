@@ -15,17 +15,24 @@
 #   - each writable hwmon attribute of the MAX6615 (the driver's 0644 files),
 #     write; uevent stays root's
 # and the MAX6615's values stay readable by anyone (temp1_input, every
-# attribute). An open is tried with dd (O_NONBLOCK: a tty without
+# attribute). One point shows what the rules cannot close (docs/install.md,
+# section 10): CAN has no device node, and any user sends frames on a CAN
+# interface (CAN_RAW needs no capability), here nobody on a vcan. An open is tried with dd (O_NONBLOCK: a tty without
 # CLOCAL would wait for carrier), and its error must be strerror(EACCES),
 # "Permission denied" (not EPERM's "Operation not permitted", nor ENOENT).
 . "$(dirname "$0")/lib.sh"
+. "$VMTEST_REPO/tests/lib/candump.sh"
 export LC_ALL=C
+VCAN=vcanperm
 I2C_DEV_LOADED_BY_US=0
 UDEVD_PID=
 LDATTACH_PIDS=()
 cleanup() {
 	local p c a
 	for p in "${LDATTACH_PIDS[@]}"; do kill "$p" 2>/dev/null && wait "$p" 2>/dev/null; done
+	[ -n "$CANDUMP_PID" ] && kill "$CANDUMP_PID" 2>/dev/null && wait "$CANDUMP_PID" 2>/dev/null
+	ip link del dev "$VCAN" 2>/dev/null
+	modprobe -r vcan can_raw can 2>/dev/null
 	if [ -n "$UDEVD_PID" ]; then
 		udevadm control --exit 2>/dev/null || kill "$UDEVD_PID" 2>/dev/null
 		wait "$UDEVD_PID" 2>/dev/null
@@ -149,7 +156,7 @@ check_attr() {
 		"nobody w=$EACCES; advee w=ok"
 }
 
-tap_plan $((${#TTYS[@]} + 3 + 2 + 2 + ${#CONTROL[@]} + 5))
+tap_plan $((${#TTYS[@]} + 3 + 2 + 2 + ${#CONTROL[@]} + 5 + 1))
 
 # UARTs: ttyTSU0..2 are buses a, b and the power controller's link; the
 # others are spare FPGA ports.
@@ -194,4 +201,16 @@ tap_ok "nobody reads temp1_input: '$v'" test -n "$v" -a "$v" -eq "$v"
 cur=$(cat "$HWMON/pwm1_enable")
 tap_ok "advee writes pwm1_enable (its value, $cur) as driver_aux's fan policy does" \
 	setpriv "${SERVICE[@]}" -- sh -c 'echo "$1" >"$2"' _ "$cur" "$HWMON/pwm1_enable"
+
+# CAN: no node for udev to guard. nobody's frame (an NMT "stop all nodes")
+# reaches the bus: documented in docs/install.md, not prevented.
+can_frame_as_nobody() {
+	modprobe vcan && ip link add dev "$VCAN" type vcan && ip link set "$VCAN" up || return 1
+	candump_start "$VCAN" "$VMTEST_SCRATCH/candump.log" || return 1
+	setpriv "${OTHER[@]}" -- cansend "$VCAN" 000#0200 || return 1
+	candump_stop
+	grep -q " 000#0200\$" "$VMTEST_SCRATCH/candump.log"
+}
+tap_here "CAN (not closed by the install): nobody sends NMT stop-all (000#0200) on $VCAN, CAN_RAW needs no privilege" \
+	can_frame_as_nobody
 tap_finish
