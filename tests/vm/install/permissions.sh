@@ -156,7 +156,7 @@ check_attr() {
 		"nobody w=$EACCES; advee w=ok"
 }
 
-tap_plan $((${#TTYS[@]} + 3 + 2 + 2 + ${#CONTROL[@]} + 5 + 1))
+tap_plan $((${#TTYS[@]} + 3 + 2 + 2 + ${#CONTROL[@]} + 5 + 1 + 1))
 
 # UARTs: ttyTSU0..2 are buses a, b and the power controller's link; the
 # others are spare FPGA ports.
@@ -211,6 +211,14 @@ can_frame_as_nobody() {
 	candump_stop
 	grep -q " 000#0200\$" "$VMTEST_SCRATCH/candump.log"
 }
+# The rules as udevd read and ran them: no complaint about an advee rules
+# file, no RUN program that failed (its chgrp/chmod).
+udevd_complaints() {
+	grep -E 'advee-[a-z0-9-]*\.rules|Process .* failed|[Ff]ailed to' "$VMTEST_SCRATCH/udevd.log"
+}
+tap_is "udevd: no warning about the advee rules, no failed RUN ($(wc -l <"$VMTEST_SCRATCH/udevd.log") log lines)" \
+	"$(udevd_complaints)" ""
+
 tap_here "CAN (not closed by the install): nobody sends NMT stop-all (000#0200) on $VCAN, CAN_RAW needs no privilege" \
 	can_frame_as_nobody
 tap_finish
