@@ -31,18 +31,7 @@ PowerConfig parse_power_config(const ConfigNode& root) {
   if (!root.has("driver_power")) return c;
   const auto n = root.child("driver_power");
   n.allow_only({"bus", "address", "rate_hz", "poweroff_command", "reboot_command"});
-  if (n.has("bus")) {
-    const auto b = n.child("bus");
-    b.allow_only({"device", "baud", "timeout_ms", "retries"});
-    c.device = b.get<std::string>("device", c.device);
-    c.baud = b.get<unsigned>("baud", c.baud);
-    if (c.baud < 300 || c.baud > 4000000) b.fail("baud", "must be 300..4000000");
-    const double ms = b.get<double>("timeout_ms", 20);
-    if (!(ms >= 0.1 && ms <= 10000)) b.fail("timeout_ms", "must be 0.1..10000");
-    c.timeout = std::chrono::microseconds(std::llround(ms * 1000));
-    c.retries = b.get<unsigned>("retries", c.retries);
-    if (c.retries > 16) b.fail("retries", "must be 0..16");
-  }
+  if (n.has("bus")) c.bus = rs485_daemon::parse_bus_section(n.child("bus"), c.bus.device);
   const auto addr = n.get<unsigned>("address", c.address);
   if (addr > 0xfe) n.fail("address", "node address must be 0x00..0xfe");
   c.address = static_cast<std::uint8_t>(addr);
@@ -89,11 +78,11 @@ std::string run_command(const std::vector<std::string>& argv) {
 }
 
 PowerDriver::PowerDriver(module::Module& m, PowerConfig cfg, rs485::Transport& link,
-                         driver_rs485::NodeStatusFn node_status)
+                         rs485_daemon::NodeStatusFn node_status)
     : m_(m),
       cfg_(std::move(cfg)),
       node_status_(std::move(node_status)),
-      call_(cfg_.timeout, cfg_.retries),
+      call_(cfg_.bus.config.timeout, cfg_.bus.config.retries),
       psc_(link, cfg_.address),
       health_(m.errors(), "psc1", cfg_.address) {
   cmd_sub_.emplace(m_.lcm(), std::string(msgs::kCmdPower.name),

@@ -136,7 +136,7 @@ TEST(PowerMessage, StatusBitsAndCurrents) {
 TEST(PowerConfig, ExampleAndMistakes) {
   const auto c = parse_power_config(module::ConfigNode::load_file(ADVEE_DRIVER_POWER_CONF "/driver_power.yaml"));
   EXPECT_EQ(c.module.name, "driver_power");
-  EXPECT_EQ(c.device, "power");
+  EXPECT_EQ(c.bus.device, "power");
   EXPECT_EQ(c.address, 0x01);
   EXPECT_EQ(c.poweroff_command, (std::vector<std::string>{"systemctl", "poweroff"}));
   EXPECT_EQ(c.reboot_command, (std::vector<std::string>{"systemctl", "reboot"}));

@@ -8,7 +8,7 @@
 
 #include "advee/module/command_line.hpp"
 #include "advee/driver_power/power_driver.hpp"
-#include "advee/driver_rs485/run_on_bus.hpp"
+#include "advee/rs485_daemon/run_on_bus.hpp"
 
 using namespace advee;
 
@@ -27,9 +27,8 @@ int main(int argc, char** argv) {
                          ? driver_power::parse_power_config(module::ConfigNode::parse("{}", "defaults"))
                          : driver_power::parse_power_config(module::ConfigNode::load_file(config));
     module::Module m(cfg.module);  // first: the bus's event thread inherits the blocked signals
-    return driver_rs485::run_on_bus(
-        m, cfg.device, rs485::BusConfig{cfg.baud, cfg.timeout, cfg.retries, 2},
-        driver_power::kExitNoBus, [&](rs485::Bus& bus, driver_rs485::NodeStatusFn status) {
+    return rs485_daemon::run_on_bus(
+        m, cfg.bus.device, cfg.bus.config, driver_power::kExitNoBus, [&](rs485::Bus& bus, rs485_daemon::NodeStatusFn status) {
           return std::make_unique<driver_power::PowerDriver>(m, cfg, bus, std::move(status));
         });
   });

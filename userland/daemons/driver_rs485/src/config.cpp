@@ -57,16 +57,9 @@ Rs485Config parse_rs485_config(const ConfigNode& root) {
   const auto n = root.child("driver_rs485");
   n.allow_only({"bus", "rate_hz", "sd1", "so1", "sbs1"});
 
+  // device is required: one instance per bus, no bus to guess.
   const auto b = n.child("bus");
-  b.allow_only({"device", "baud", "timeout_ms", "retries"});
-  c.bus.device = b.get<std::string>("device");
-  c.bus.baud = b.get<unsigned>("baud", c.bus.baud);
-  if (c.bus.baud < 300 || c.bus.baud > 4000000) b.fail("baud", "must be 300..4000000");
-  const double timeout_ms = b.get<double>("timeout_ms", 20);
-  if (!(timeout_ms >= 0.1 && timeout_ms <= 10000)) b.fail("timeout_ms", "must be 0.1..10000");
-  c.bus.timeout = std::chrono::microseconds(std::llround(timeout_ms * 1000));
-  c.bus.retries = b.get<unsigned>("retries", c.bus.retries);
-  if (c.bus.retries > 16) b.fail("retries", "must be 0..16");
+  c.bus = rs485_daemon::parse_bus_section(b, b.get<std::string>("device"));
 
   c.rate_hz = n.get<double>("rate_hz", c.rate_hz);
   if (!(c.rate_hz >= 0.1 && c.rate_hz <= 50)) n.fail("rate_hz", "must be between 0.1 and 50");

@@ -16,7 +16,7 @@ Rs485Driver::Rs485Driver(module::Module& m, Rs485Config cfg, rs485::Transport& b
     : m_(m), cfg_(std::move(cfg)), node_status_(std::move(node_status)) {
   // Per-call options equal to the bus defaults: they also hold on a
   // transport without bus configuration (FakeTransport, a shared bus).
-  call_ = rs485::CallOptions(cfg_.bus.timeout, cfg_.bus.retries);
+  call_ = rs485::CallOptions(cfg_.bus.config.timeout, cfg_.bus.config.retries);
   const auto period = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / cfg_.rate_hz));
   for (const auto& b : cfg_.sd1)
     sd1_.push_back(std::make_unique<Sd1Node>(Sd1Node{&b, rs485::Sd1(bus, b.address),
@@ -50,7 +50,7 @@ void Rs485Driver::on_active_beacons(const lowlevel::data_active_beacons_t& m) {
   std::vector<std::uint8_t> ids;
   for (auto id : msg->id) {
     if (id < 0 || id > 255) {
-      m_.errors().report(module::Severity::Warning, module::ErrorType::Unknown, 5,
+      m_.errors().report(module::Severity::Warning, module::ErrorType::Unknown, kErrBadBeaconId,
                          "LL_DATA_ACTIVE_BEACONS from " + msg->module + ": beacon id " + std::to_string(id) +
                              " out of 0..255 ignored");
       continue;

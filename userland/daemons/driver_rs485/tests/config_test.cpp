@@ -31,7 +31,7 @@ TEST(Rs485Config, BusAExampleHasTwoSd1AndTheSo1) {
   const auto c = parse_rs485_config(module::ConfigNode::load_file(ADVEE_DRIVER_RS485_CONF "/driver_rs485a.yaml"));
   EXPECT_EQ(c.module.name, "driver_rs485a");
   EXPECT_EQ(c.bus.device, "a");
-  EXPECT_EQ(c.bus.timeout, std::chrono::microseconds(20000));
+  EXPECT_EQ(c.bus.config.timeout, std::chrono::microseconds(20000));
   EXPECT_EQ(c.rate_hz, 4.0);
   ASSERT_EQ(c.sd1.size(), 2u);
   EXPECT_EQ(c.sd1[0].name, "front");
@@ -62,8 +62,8 @@ TEST(Rs485Config, BusBExampleHasTheSbs1) {
 TEST(Rs485Config, DefaultsAndBeaconIds) {
   const auto c = parse("  bus: {device: /dev/ttyTSU1}\n  sbs1: {address: 48, beacon_ids: [1, 2, 7]}\n");
   EXPECT_EQ(c.module.name, "driver_rs485");
-  EXPECT_EQ(c.bus.baud, 115200u);
-  EXPECT_EQ(c.bus.retries, 1u);
+  EXPECT_EQ(c.bus.config.baud, 115200u);
+  EXPECT_EQ(c.bus.config.retries, 1u);
   EXPECT_EQ(c.sbs1->beacon_ids, (std::vector<std::uint8_t>{1, 2, 7}));
   const auto o = parse("  bus: {device: a}\n  so1: {address: 0x20}\n");
   EXPECT_EQ(o.so1->max_speed_mps, 1.5);

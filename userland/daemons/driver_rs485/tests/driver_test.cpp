@@ -28,6 +28,11 @@ using rs485::FakeTransport;
 
 namespace {
 
+using rs485_daemon::kErrOff;
+using rs485_daemon::kErrPassive;
+using rs485_daemon::kErrRecovered;
+using rs485_daemon::kErrTransaction;
+
 // The modules run on a manual clock: `d` of module time in 1 ms steps, each
 // followed by the loop passes that handle what became ready (memq delivers
 // on the pass after a publish). No wall-clock wait: the fake transport

@@ -9,7 +9,7 @@
 
 #include "advee/module/command_line.hpp"
 #include "advee/driver_rs485/rs485_driver.hpp"
-#include "advee/driver_rs485/run_on_bus.hpp"
+#include "advee/rs485_daemon/run_on_bus.hpp"
 
 using namespace advee;
 
@@ -28,9 +28,8 @@ int main(int argc, char** argv) {
     const std::string& config = std::get<std::string>(args);
     const auto cfg = driver_rs485::parse_rs485_config(module::ConfigNode::load_file(config));
     module::Module m(cfg.module);
-    return driver_rs485::run_on_bus(
-        m, cfg.bus.device, rs485::BusConfig{cfg.bus.baud, cfg.bus.timeout, cfg.bus.retries, 2},
-        driver_rs485::kExitNoBus, [&](rs485::Bus& bus, driver_rs485::NodeStatusFn status) {
+    return rs485_daemon::run_on_bus(
+        m, cfg.bus.device, cfg.bus.config, driver_rs485::kExitNoBus, [&](rs485::Bus& bus, rs485_daemon::NodeStatusFn status) {
           return std::make_unique<driver_rs485::Rs485Driver>(m, cfg, bus, std::move(status));
         });
   });

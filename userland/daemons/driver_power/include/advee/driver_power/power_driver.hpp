@@ -14,11 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "advee/driver_rs485/node_health.hpp"
 #include "advee/module/config.hpp"
 #include "advee/module/module.hpp"
 #include "advee/module/subscription.hpp"
 #include "advee/rs485/devices/psc1.hpp"
+#include "advee/rs485_daemon/bus_section.hpp"
+#include "advee/rs485_daemon/node_health.hpp"
 #include "lowlevel/cmd_power_t.hpp"
 #include "lowlevel/data_power_t.hpp"
 
@@ -26,10 +27,7 @@ namespace advee::driver_power {
 
 struct PowerConfig {
   module::ModuleOptions module;
-  std::string device = "power";  // path or bus name (/dev/rs485/power)
-  std::uint32_t baud = 115200;
-  std::chrono::microseconds timeout{20000};
-  unsigned retries = 1;
+  rs485_daemon::BusSection bus{"power"};  // /dev/rs485/power
   std::uint8_t address = 0x01;
   double rate_hz = 1.0;
   // argv of the commands for LL_CMD_POWER POWEROFF / REBOOT (PATH searched).
@@ -43,7 +41,7 @@ PowerConfig parse_power_config(const module::ConfigNode& root);
 // Exit details (module::ExitKind::Device + n).
 inline constexpr int kExitNoBus = 1;
 
-// Error numbers on CM_DATA_ERROR besides those of driver_rs485::NodeHealth.
+// Error numbers on CM_DATA_ERROR besides those of rs485_daemon::NodeHealth.
 inline constexpr int kErrBadCommand = 10;    // LL_CMD_POWER out of range
 inline constexpr int kErrCommandFailed = 11; // poweroff/reboot command failed
 inline constexpr int kErrStopEvent = 12;     // PAUSE engaged/released (notice)
@@ -59,7 +57,7 @@ std::string run_command(const std::vector<std::string>& argv);
 class PowerDriver {
  public:
   PowerDriver(module::Module& m, PowerConfig cfg, rs485::Transport& link,
-              driver_rs485::NodeStatusFn node_status = {});
+              rs485_daemon::NodeStatusFn node_status = {});
   ~PowerDriver();
   PowerDriver(const PowerDriver&) = delete;
   PowerDriver& operator=(const PowerDriver&) = delete;
@@ -73,10 +71,10 @@ class PowerDriver {
 
   module::Module& m_;
   PowerConfig cfg_;
-  driver_rs485::NodeStatusFn node_status_;
+  rs485_daemon::NodeStatusFn node_status_;
   rs485::CallOptions call_;
   rs485::Psc1 psc_;
-  driver_rs485::NodeHealth health_;
+  rs485_daemon::NodeHealth health_;
   std::optional<std::uint8_t> status_;  // last known output status
   std::optional<rs485::Psc1Currents> currents_;
   std::atomic<bool> paused_{false};

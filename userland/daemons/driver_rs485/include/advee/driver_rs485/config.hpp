@@ -12,6 +12,7 @@
 
 #include "advee/driver_rs485/odometry.hpp"
 #include "advee/module/config.hpp"
+#include "advee/rs485_daemon/bus_section.hpp"
 
 namespace advee::driver_rs485 {
 
@@ -47,16 +48,9 @@ struct Sbs1Board {
   std::chrono::milliseconds resend_ids{10000};  // SET_BEACON_IDS again (a board that reset forgets them)
 };
 
-struct BusSettings {
-  std::string device = "a";    // path or bus name (/dev/rs485/NAME)
-  std::uint32_t baud = 115200;
-  std::chrono::microseconds timeout{20000};  // per attempt
-  unsigned retries = 1;
-};
-
 struct Rs485Config {
   module::ModuleOptions module;
-  BusSettings bus;
+  rs485_daemon::BusSection bus;
   double rate_hz = 4.0;
   std::vector<Sd1Board> sd1;
   std::optional<So1Board> so1;

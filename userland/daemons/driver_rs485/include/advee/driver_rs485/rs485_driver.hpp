@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "advee/driver_rs485/config.hpp"
-#include "advee/driver_rs485/node_health.hpp"
 #include "advee/driver_rs485/odometry.hpp"
 #include "advee/module/module.hpp"
 #include "advee/rs485/devices/sbs1.hpp"
 #include "advee/rs485/devices/sd1.hpp"
 #include "advee/module/subscription.hpp"
+#include "advee/rs485_daemon/node_health.hpp"
 #include "advee/rs485/devices/so1.hpp"
 #include "lowlevel/data_active_beacons_t.hpp"
 
@@ -25,6 +25,13 @@ namespace advee::driver_rs485 {
 
 // Exit details (module::ExitKind::Device + n).
 inline constexpr int kExitNoBus = 1;  // the bus cannot be opened or configured
+
+// Error numbers on CM_DATA_ERROR besides those of rs485_daemon::NodeHealth (1-4).
+inline constexpr int kErrBadBeaconId = 5;  // LL_DATA_ACTIVE_BEACONS id out of 0..255 (warning)
+inline constexpr int kErrOdoGap = 6;       // odometry ticks of a too long gap dropped (warning)
+
+using rs485_daemon::NodeHealth;
+using rs485_daemon::NodeStatusFn;
 
 class Rs485Driver {
  public:

@@ -16,18 +16,18 @@
 #include "advee/module/error.hpp"
 #include "advee/rs485/bus.hpp"
 
-namespace advee::driver_rs485 {
+namespace advee::rs485_daemon {
 
 // The kernel's view of a node (Bus::node); nullopt when it cannot be read
 // (a transport without node state, such as FakeTransport).
 using NodeStatusFn = std::function<std::optional<rs485::NodeStatus>(std::uint8_t addr)>;
 
-// Error numbers on CM_DATA_ERROR.
+// Error numbers on CM_DATA_ERROR, the same for every RS-485 daemon; each
+// daemon numbers its own from 5 on.
 inline constexpr int kErrTransaction = 1;  // a transaction failed (text names the outcome)
 inline constexpr int kErrPassive = 2;      // node error-passive
 inline constexpr int kErrOff = 3;          // node off: no longer polled
 inline constexpr int kErrRecovered = 4;    // answers again / polled again (notice)
-inline constexpr int kErrOdoGap = 6;       // odometry ticks of a too long gap dropped (warning; 5 is a bad beacon id)
 
 class NodeHealth {
  public:
@@ -53,4 +53,4 @@ class NodeHealth {
   rs485::NodeState state_ = rs485::NodeState::active;
 };
 
-}  // namespace advee::driver_rs485
+}  // namespace advee::rs485_daemon

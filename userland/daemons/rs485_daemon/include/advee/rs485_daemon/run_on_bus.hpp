@@ -8,11 +8,11 @@
 #include <string>
 #include <system_error>
 
-#include "advee/driver_rs485/node_health.hpp"
+#include "advee/rs485_daemon/node_health.hpp"
 #include "advee/module/module.hpp"
 #include "advee/rs485/bus.hpp"
 
-namespace advee::driver_rs485 {
+namespace advee::rs485_daemon {
 
 // A bus that cannot be opened is reported and ends the module with device
 // error `no_bus_detail`; a ModuleExit from the driver is reported and ends it
@@ -49,4 +49,4 @@ int run_on_bus(module::Module& m, const std::string& device, const rs485::BusCon
   }
 }
 
-}  // namespace advee::driver_rs485
+}  // namespace advee::rs485_daemon

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
-#include "advee/driver_rs485/node_health.hpp"
+#include "advee/rs485_daemon/node_health.hpp"
 
 #include <cstdio>
 
 #include "advee/rs485/error.hpp"
 
-namespace advee::driver_rs485 {
+namespace advee::rs485_daemon {
 
 using module::ErrorType;
 using module::Severity;
@@ -63,4 +63,4 @@ void NodeHealth::record(std::string_view what, std::error_code outcome, const No
   update_state(status);
 }
 
-}  // namespace advee::driver_rs485
+}  // namespace advee::rs485_daemon
