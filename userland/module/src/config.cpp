@@ -37,9 +37,7 @@ bool ConfigNode::has(std::string_view key) const {
 void ConfigNode::fail(std::string_view key, const std::string& msg) const {
   YAML::Mark m = node_.Mark();
   if (node_.IsMap() && node_[std::string(key)].IsDefined()) m = node_[std::string(key)].Mark();
-  std::string where = file_;
-  if (m.line >= 0) where += ":" + std::to_string(m.line + 1);
-  throw ConfigError(where + ": " + std::string(key) + ": " + msg);
+  throw_config_error(file_, m.line, key, msg);
 }
 
 ConfigNode ConfigNode::child(std::string_view key) const {

@@ -8,10 +8,7 @@
 namespace advee::robotsim::yaml {
 
 void Ctx::fail(const YAML::Node& at, const std::string& field, const std::string& what) const {
-  const auto mark = at.Mark();
-  std::string where = file;
-  if (mark.line >= 0) where += ":" + std::to_string(mark.line + 1);
-  throw ConfigError(where + ": " + field + ": " + what);
+  throw_config_error(file, at.Mark().line, field, what);
 }
 
 YAML::Node parse(const std::string& text, const std::string& name) {
@@ -20,7 +17,7 @@ YAML::Node parse(const std::string& text, const std::string& name) {
     if (!doc.IsMap()) throw ConfigError(name + ": not a YAML mapping at the top level");
     return doc;
   } catch (const YAML::Exception& e) {
-    throw ConfigError(name + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
+    throw_config_error(name, e.mark.line, "", "YAML syntax: " + e.msg);
   }
 }
 

@@ -21,11 +21,7 @@ class Loader {
   Loader(std::string name, std::optional<std::uint32_t> seed) : name_(std::move(name)), seed_(seed) {}
 
   [[noreturn]] void fail(const YAML::Node& n, const std::string& field, const std::string& msg) const {
-    std::ostringstream o;
-    o << name_;
-    if (n.Mark().line >= 0) o << ':' << n.Mark().line + 1 << ':' << n.Mark().column + 1;
-    o << ": " << field << ": " << msg;
-    throw ConfigError(o.str());
+    throw_config_error(name_, n.Mark().line, field, msg);
   }
 
   // Every key of a map must be known: a typo is an error, not a silent default.
@@ -229,8 +225,7 @@ SimConfig load_config_string(const std::string& yaml, const std::string& name,
   try {
     root = YAML::Load(yaml);
   } catch (const YAML::ParserException& e) {
-    throw ConfigError(name + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
-                      ": YAML syntax: " + e.msg);
+    throw_config_error(name, e.mark.line, "", "YAML syntax: " + e.msg);
   }
   return Loader(name, seed).load(root);
 }

@@ -12,15 +12,13 @@
 #include <string>
 #include <string_view>
 
+#include "advee/config_error.hpp"
 #include "advee/module/error.hpp"
 #include "advee/module/state.hpp"
 
 namespace advee::module {
 
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using advee::ConfigError;  // advee/config_error.hpp: one type for every configuration file
 
 // A node together with the file it came from, for error messages.
 class ConfigNode {

@@ -9,15 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "advee/config_error.hpp"
 #include "advee/robotsim/geometry.hpp"
 
 namespace advee::robotsim {
 
-// A map or robot file that cannot be used; what() names the file, line and field.
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+// A map or robot file that cannot be used; what() names the file, line and
+// field (advee/config_error.hpp: one type for every configuration file).
+using advee::ConfigError;
 
 struct Beacon {
   std::uint8_t id;

@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "advee/config_error.hpp"
 #include "advee/rs485sim/bus_sim.hpp"
 
 namespace advee::rs485sim {
 
-// "FILE:LINE:COLUMN: FIELD: what is wrong".
-struct ConfigError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+// "FILE:LINE: FIELD: what is wrong" (advee/config_error.hpp: one type for
+// every configuration file).
+using advee::ConfigError;
 
 struct BusConfig {
   std::unique_ptr<BusSim> bus;
