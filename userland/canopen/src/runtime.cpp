@@ -26,19 +26,12 @@ MasterRuntime::MasterRuntime(EventLoop& loop, const std::string& ifname, MasterC
 }
 
 SignalHandler::SignalHandler(EventLoop& loop, std::initializer_list<int> signals, std::function<void(int)> on_signal)
-    : loop_(loop), on_signal_(std::move(on_signal)) {
-  sigset_t set;
-  sigemptyset(&set);
-  for (int s : signals) sigaddset(&set, s);
-  if (::sigprocmask(SIG_BLOCK, &set, nullptr) < 0) throw std::system_error(errno, std::generic_category(), "sigprocmask");
-  fd_.reset(::signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC));
-  if (!fd_) throw std::system_error(errno, std::generic_category(), "signalfd");
-  loop_.add_fd(fd_.get(), EPOLLIN, [this](std::uint32_t) {
-    signalfd_siginfo si;
-    while (::read(fd_.get(), &si, sizeof si) == static_cast<ssize_t>(sizeof si)) on_signal_(static_cast<int>(si.ssi_signo));
+    : loop_(loop), fd_(signals), on_signal_(std::move(on_signal)) {
+  loop_.add_fd(fd_.fd(), EPOLLIN, [this](std::uint32_t) {
+    while (const auto si = fd_.read()) on_signal_(static_cast<int>(si->ssi_signo));
   });
 }
 
-SignalHandler::~SignalHandler() { loop_.remove_fd(fd_.get()); }
+SignalHandler::~SignalHandler() { loop_.remove_fd(fd_.fd()); }
 
 }  // namespace advee::canopen

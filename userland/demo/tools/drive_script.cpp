@@ -19,7 +19,7 @@
 #include "advee/cli.hpp"
 #include "advee/demo/motion_script.hpp"
 #include "advee/module/periodic.hpp"
-#include "advee/module/signals.hpp"
+#include "advee/signal_fd.hpp"
 #include "advee/module/time.hpp"
 #include "advee/msgs/bus.hpp"
 #include "advee/msgs/channels.hpp"
@@ -89,7 +89,7 @@ class Publisher {
 };
 
 // Waits for the next tick of `timer`; false when SIGINT/SIGTERM arrived.
-bool next_tick(advee::module::PeriodicTimer& timer, advee::module::SignalFd& signals) {
+bool next_tick(advee::module::PeriodicTimer& timer, advee::SignalFd& signals) {
   for (;;) {
     pollfd fds[2] = {{timer.fd(), POLLIN, 0}, {signals.fd(), POLLIN, 0}};
     if (::poll(fds, 2, -1) < 0) {
@@ -104,7 +104,7 @@ bool next_tick(advee::module::PeriodicTimer& timer, advee::module::SignalFd& sig
 int run(const Options& o) {
   const advee::demo::MotionScript script(advee::robotsim::load_path(o.path_file));
   // Signals first: LCM's threads inherit the blocked mask.
-  advee::module::SignalFd signals({SIGINT, SIGTERM});
+  advee::SignalFd signals({SIGINT, SIGTERM});
   std::unique_ptr<lcm::LCM> bus;
   try {
     bus = advee::msgs::open_bus(advee::msgs::bus_url(""));

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "advee/module/signals.hpp"
+#include "advee/signal_fd.hpp"
 #include "advee/msgs/bus.hpp"
 #include "advee/msgs/channels.hpp"
 #include "advee/msgs/describe.hpp"
@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     channels.emplace_back(advee::msgs::kSimDataPose);
   }
   try {
-    advee::module::SignalFd signals({SIGINT, SIGTERM});
+    advee::SignalFd signals({SIGINT, SIGTERM});
     std::unique_ptr<lcm::LCM> bus;
     try {
       bus = advee::msgs::open_bus(advee::msgs::bus_url(""));

@@ -3,7 +3,6 @@
 // Subcommands: scan, xfer (raw), reset, reset-node, stats, watch, config.
 // Exit status: 0 ok, 1 protocol outcome not OK, 2 usage, 3 device/system error.
 #include <poll.h>
-#include <sys/signalfd.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +19,7 @@
 #include "advee/cli.hpp"
 #include "advee/rs485/bus.hpp"
 #include "advee/rs485/devices/device.hpp"
+#include "advee/signal_fd.hpp"
 #include "advee/unique_fd.hpp"
 #include "cli_parse.hpp"
 
@@ -266,13 +266,7 @@ int run_watch(const Global& g, const WatchArgs& a) {
   auto bus = open_bus(g);
 
   // SIGINT/SIGTERM through a signalfd, so that poll() sees Ctrl-C.
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  if (sigprocmask(SIG_BLOCK, &set, nullptr) < 0) throw std::system_error(errno, std::system_category(), "sigprocmask");
-  advee::UniqueFd sfd(::signalfd(-1, &set, SFD_CLOEXEC));
-  if (!sfd) throw std::system_error(errno, std::system_category(), "signalfd");
+  const advee::SignalFd sfd({SIGINT, SIGTERM});
 
   std::uint64_t seen = 0;
   for (;;) {
@@ -282,7 +276,7 @@ int run_watch(const Global& g, const WatchArgs& a) {
       if (left.count() <= 0) break;
       wait_ms = static_cast<int>(std::min<std::int64_t>(left.count() + 1, 1 << 30));
     }
-    pollfd fds[2] = {{bus->event_fd(), POLLIN, 0}, {sfd.get(), POLLIN, 0}};
+    pollfd fds[2] = {{bus->event_fd(), POLLIN, 0}, {sfd.fd(), POLLIN, 0}};
     if (::poll(fds, 2, wait_ms) < 0) {
       if (errno == EINTR) continue;
       throw std::system_error(errno, std::system_category(), "poll");

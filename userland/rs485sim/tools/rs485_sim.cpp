@@ -5,7 +5,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/signalfd.h>
 #include <sys/socket.h>
 #include <sys/un.h>
 #include <unistd.h>
@@ -22,6 +21,7 @@
 #include "advee/rs485sim/config.hpp"
 #include "advee/rs485sim/control.hpp"
 #include "advee/rs485sim/control_client.hpp"
+#include "advee/signal_fd.hpp"
 #include "advee/unique_fd.hpp"
 
 using namespace advee::rs485sim;
@@ -156,14 +156,11 @@ int run(SimConfig& cfg, bool verbose) {
     }
   }
 
-  sigset_t sigs;
-  sigemptyset(&sigs);
-  sigaddset(&sigs, SIGTERM);
-  sigaddset(&sigs, SIGINT);
-  sigprocmask(SIG_BLOCK, &sigs, nullptr);
-  UniqueFd sfd(signalfd(-1, &sigs, SFD_CLOEXEC | SFD_NONBLOCK));
-  if (!sfd) {
-    std::perror("rs485-sim: signalfd");
+  std::optional<advee::SignalFd> sfd;
+  try {
+    sfd.emplace(std::initializer_list<int>{SIGTERM, SIGINT});
+  } catch (const std::system_error& e) {
+    std::fprintf(stderr, "rs485-sim: %s\n", e.what());
     return 1;
   }
 
@@ -179,7 +176,7 @@ int run(SimConfig& cfg, bool verbose) {
 
   std::vector<pollfd> pfds;
   for (const auto& w : wires) pfds.push_back({w.fd.get(), POLLIN, 0});
-  pfds.push_back({sfd.get(), POLLIN, 0});
+  pfds.push_back({sfd->fd(), POLLIN, 0});
   if (ctl) pfds.push_back({ctl.get(), POLLIN, 0});
   const std::size_t sig_i = wires.size(), ctl_i = wires.size() + 1;
 
@@ -236,9 +233,8 @@ int run(SimConfig& cfg, bool verbose) {
       }
     }
     if (pfds[sig_i].revents & POLLIN) {
-      signalfd_siginfo si{};
-      if (read(sfd.get(), &si, sizeof(si)) == sizeof(si))
-        std::fprintf(stderr, "rs485-sim: %s, stopping\n", strsignal(static_cast<int>(si.ssi_signo)));
+      if (const auto si = sfd->read())
+        std::fprintf(stderr, "rs485-sim: %s, stopping\n", strsignal(static_cast<int>(si->ssi_signo)));
       stop = true;
     }
   }

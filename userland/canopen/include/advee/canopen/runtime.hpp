@@ -13,6 +13,7 @@
 #include "advee/canopen/can_port.hpp"
 #include "advee/canopen/event_loop.hpp"
 #include "advee/canopen/master.hpp"
+#include "advee/signal_fd.hpp"
 
 namespace advee::canopen {
 
@@ -31,9 +32,9 @@ class MasterRuntime {
   Master master_;
 };
 
-// Blocks the given signals for the process and delivers them through the
-// loop; restores nothing on destruction because daemons exit afterwards, but
-// closes the descriptor.
+// Blocks the given signals in the calling thread (before other threads
+// start, so that they inherit the mask) and delivers them through the loop;
+// destruction restores the mask (advee/signal_fd.hpp).
 class SignalHandler {
  public:
   SignalHandler(EventLoop& loop, std::initializer_list<int> signals, std::function<void(int)> on_signal);
@@ -43,7 +44,7 @@ class SignalHandler {
 
  private:
   EventLoop& loop_;
-  UniqueFd fd_;
+  SignalFd fd_;
   std::function<void(int)> on_signal_;
 };
 

@@ -26,7 +26,7 @@
 #include "advee/module/error.hpp"
 #include "advee/module/exit_code.hpp"
 #include "advee/module/periodic.hpp"
-#include "advee/module/signals.hpp"
+#include "advee/signal_fd.hpp"
 #include "advee/module/state.hpp"
 #include "advee/module/timers.hpp"
 
@@ -95,7 +95,7 @@ class Module {
   void handle_signal(const signalfd_siginfo& si);
 
   ModuleOptions opts_;
-  SignalFd signals_;  // first: the mask must be in place before LCM starts threads
+  advee::SignalFd signals_;  // first: the mask must be in place before LCM starts threads
   std::unique_ptr<TimerSource> own_timers_;  // before every Timer: they cancel into it
   TimerSource& timers_;
   std::string lcm_url_;
