@@ -9,7 +9,7 @@
 #   make check-fast      gates, unit tests, kernel suites on the x86_64 lane (iteration)
 #   make check TEST=name one VM test (suite or suite/program) on the x86_64 lane
 #   make demo            the main job: the robot's low level on the simulated
-#                        robot in the VM, diagnostic_center on this terminal
+#                        robot in the VM, advee-diagnostic-center on this terminal
 #                        (FOR=30s: non-interactive, a text summary every 5 s)
 #   make deps            install what this machine lacks (idempotent)
 #   make gates           W=1 + checkpatch --strict + sparse on the kernel sources
