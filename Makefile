@@ -20,6 +20,8 @@
 #                        TARGET=armel|armhf the ARM build; MODULES=dkms|none)
 #   make dkms-source     the module sources into $(DESTDIR)/usr/src/advee-VERSION
 #   make debs            the Debian packages into build/debs/, lintian-checked
+#                        (ARCH=arm [TARGET=armel|armhf]: cross-built for the
+#                        robot into build/debs-armel/, build/debs-armhf/)
 #   make clean
 #
 # KDIR=... builds the modules against another kernel tree (default: Debian's
@@ -120,7 +122,7 @@ dkms-source:
 	@$(TOP)/scripts/install.sh --dkms-source-only $(if $(DESTDIR),--destdir "$(DESTDIR)")
 
 debs:
-	@$(TOP)/scripts/build-debs.sh --lintian
+	@$(TOP)/scripts/build-debs.sh --lintian $(if $(filter arm,$(ARCH)),--arch $(or $(TARGET),armel))
 
 demo:
 	@$(TOP)/scripts/demo.sh $(if $(FOR),--for "$(FOR)")
