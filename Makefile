@@ -9,7 +9,7 @@
 #   make check-fast      gates, unit tests, kernel suites on the x86_64 lane (iteration)
 #   make check TEST=name one VM test (suite or suite/program) on the x86_64 lane
 #   make demo            the main job: the robot's low level on the simulated
-#                        robot in the VM, diagnostic_center on this terminal
+#                        robot in the VM, advee-diagnostic-center on this terminal
 #                        (FOR=30s: non-interactive, a text summary every 5 s)
 #   make deps            install what this machine lacks (idempotent)
 #   make gates           W=1 + checkpatch --strict + sparse on the kernel sources
@@ -20,6 +20,8 @@
 #                        TARGET=armel|armhf the ARM build; MODULES=dkms|none)
 #   make dkms-source     the module sources into $(DESTDIR)/usr/src/advee-VERSION
 #   make debs            the Debian packages into build/debs/, lintian-checked
+#                        (ARCH=arm [TARGET=armel|armhf]: cross-built for the
+#                        robot into build/debs-armel/, build/debs-armhf/)
 #   make clean
 #
 # KDIR=... builds the modules against another kernel tree (default: Debian's
@@ -120,7 +122,7 @@ dkms-source:
 	@$(TOP)/scripts/install.sh --dkms-source-only $(if $(DESTDIR),--destdir "$(DESTDIR)")
 
 debs:
-	@$(TOP)/scripts/build-debs.sh --lintian
+	@$(TOP)/scripts/build-debs.sh --lintian $(if $(filter arm,$(ARCH)),--arch $(or $(TARGET),armel))
 
 demo:
 	@$(TOP)/scripts/demo.sh $(if $(FOR),--for "$(FOR)")

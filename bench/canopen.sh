@@ -24,7 +24,7 @@ command -v taskset >/dev/null && PIN=(taskset -c 0)
 
 ip link show "$IF" >/dev/null 2>&1 || { echo "bench/canopen.sh: no $IF (modprobe vcan; ip link add dev $IF type vcan)" >&2; exit 1; }
 
-"${PIN[@]}" "$BIN/canopen-sim-drive" -i "$IF" -n 1 -p epos >"$OUT/sim.log" 2>&1 &
+"${PIN[@]}" "$BIN/advee-canopen-sim-drive" -i "$IF" -n 1 -p epos >"$OUT/sim.log" 2>&1 &
 for _ in $(seq 100); do grep -q "ready on" "$OUT/sim.log" && break; sleep 0.1; done
 
 echo "# pinned: ${PIN[*]:-no}"

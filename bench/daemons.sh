@@ -116,7 +116,7 @@ can_up() {
 	ip link set up "$CAN_IF" || return 1
 	for n in 1:epos 2:icla; do
 		p=${n#*:}
-		bg "$VMTEST_BUILD/userland/canopen/canopen-sim-drive" -i "$CAN_IF" -n "${n%%:*}" -p "$p" >"$SCR/sim-$p.log" 2>&1
+		bg "$VMTEST_BUILD/userland/canopen/advee-canopen-sim-drive" -i "$CAN_IF" -n "${n%%:*}" -p "$p" >"$SCR/sim-$p.log" 2>&1
 		wait_for "$SCR/sim-$p.log" "ready on" 20 || return 1
 	done
 }
@@ -176,7 +176,7 @@ show_logs() {
 }
 
 trap cleanup EXIT
-for p in "$WD_BIN" "$PROBE" "$LCMCTL" "$SIMBIN/rs485-sim"; do
+for p in "$WD_BIN" "$PROBE" "$LCMCTL" "$SIMBIN/advee-rs485-sim"; do
 	[ -x "$p" ] || { echo "bench/daemons.sh: $p not built" >&2; exit 1; }
 done
 if [ "$ARCH" = armel ]; then
@@ -187,13 +187,13 @@ if [ "$ARCH" = armel ]; then
 fi
 net_setup || { echo "bench/daemons.sh: no loopback multicast" >&2; exit 1; }
 # The DIO header + MAX6615 first (sim_load loads ts7800_dio before the
-# simulated FPGA), then the TS-UARTs and rs485-sim on the same FPGA.
+# simulated FPGA), then the TS-UARTs and advee-rs485-sim on the same FPGA.
 board_up || { echo "bench/daemons.sh: simulated MAX6615 did not come up" >&2; exit 1; }
 modprobe ts_uart || exit 1
 for p in /dev/ttyTSU0 /dev/ttyTSU1 /dev/ttyTSU2; do
 	wait_path "$p" 10 || { echo "bench/daemons.sh: $p did not appear" >&2; exit 1; }
 done
-start_sim "$DSUITE/boards.yaml" || { echo "bench/daemons.sh: rs485-sim did not start" >&2; sed 's/^/  /' "$SCR/sim.err" >&2; exit 1; }
+start_sim "$DSUITE/boards.yaml" || { echo "bench/daemons.sh: advee-rs485-sim did not start" >&2; sed 's/^/  /' "$SCR/sim.err" >&2; exit 1; }
 sim set sd1@0x10 srf all 1.50 >/dev/null
 sim set sd1@0x11 srf all 2.50 >/dev/null
 sim set so1@0x20 rate 1024 1024 >/dev/null

@@ -177,6 +177,12 @@ cross_check() {	# cross_check TARGET: every program of the install manifest exis
 	stage "userland cross build + install manifest ($1)" nice -n 10 "$TOP/scripts/cross-check.sh" "$1"
 	stage_row "userland cross build + install manifest ($1)" $?
 }
+debs_cross_check() {	# debs_cross_check ARCH: the robot's packages cross-built over cross_check's build
+	# (18-33 s: dpkg-buildpackage -a ARCH, help2man under qemu-user, lintian)
+	stage "Debian packages ($1): dpkg-buildpackage -a $1, ARM ELF check, lintian" \
+		nice -n 10 "$TOP/scripts/build-debs.sh" --arch "$1" --lintian
+	stage_row "Debian packages ($1): built, every ELF file ARM, lintian no error and no warning" $?
+}
 pair_check() {	# the two-computer test: two x86_64 guests on a private link (tests/twocomp)
 	stage "two computers (tests/harness/vm-pair.sh)" "$TOP/tests/harness/vm-pair.sh"
 	stage_row "two computers: both guests ran their programs" $?
@@ -257,8 +263,8 @@ full)
 	# docs/kernels.md); the other suites on Debian's 6.1:
 	#   vm      the kernel suites on stock 6.12, then those on stock 6.1,
 	#           then the armhf lane, then the two-computer test (two guests
-	#           at once, about 3 min), then the armel cross build (this
-	#           track ends first otherwise);
+	#           at once, about 3 min), then the armel cross build and its
+	#           Debian packages (this track ends first otherwise);
 	#   vmuser  the x86_64 guest (6.1) of the suites that are not kernel
 	#           suites (user-space stack, install), then DKMS (a guest per
 	#           amd64 kernel), then the kernel suites with rt_lane=1 on
@@ -270,7 +276,7 @@ full)
 	#           priority next to three guests), the browser check, lintian
 	#           and the packages' programs.
 	mapfile -t system_sel < <(system_suites | awk '{ print "--test"; print }')
-	vm_track() { stock_kernel 6.12; stock_kernel 6.1; armhf_lane; pair_check; cross_check armel; }
+	vm_track() { stock_kernel 6.12; stock_kernel 6.1; armhf_lane; pair_check; cross_check armel; debs_cross_check armel; }
 	vmuser_track() { x86_lane x86_64 "${system_sel[@]}"; dkms_check; stock_kernel 6.12-rt; cross_check armhf; }
 	track vm vm_track
 	track vmuser vmuser_track

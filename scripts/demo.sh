@@ -6,11 +6,11 @@
 # VM and runs the whole low level of the robot there on the simulated robot
 # (tests/harness/demo-guest.sh):
 #
-#   scripts/demo.sh              diagnostic_center's terminal UI on this
+#   scripts/demo.sh              advee-diagnostic-center's terminal UI on this
 #                                terminal (the VM's serial console); q quits
 #                                it and the VM powers off (Ctrl-a x kills it)
 #   scripts/demo.sh --for 30s    non-interactive: the robot drives the scripted
-#                                path, diagnostic_center --text prints a
+#                                path, advee-diagnostic-center --text prints a
 #                                summary every 5 s; exit 0 when all went well
 #                                (`make demo FOR=30s`)
 #

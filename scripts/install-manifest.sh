@@ -6,7 +6,9 @@
 # and <!-- manifest:end -->). A line is a path, <kver> stands for the kernel
 # release, a * matches any characters (also /). Every path is required on
 # every target (native, armhf, armel; default native) unless the line says
-# "(not on TARGET...: why)": then it must be absent there. Prints every
+# "(not on TARGET...: why)": then it must be absent there; a line
+# "(alias of NAME: why)" must be a symlink to NAME (docs/command-line.md
+# "Names"). Prints every
 # required path that is missing, every excluded one that is there and every
 # installed file that is not listed; exits 1 on any.
 set -euo pipefail
@@ -32,7 +34,11 @@ while read -r path rest; do
 		for t in $(printf '%s' "$rest" | sed 's/^(not on \([^:]*\):.*/\1/'); do
 			[ "$t" = "$target" ] && excluded=1
 		done ;;
-	*) echo "docs/install.md: '$path $rest': only '(not on TARGET...: why)' may follow a path"; bad=1; continue ;;
+	'(alias of '*': '*')')
+		to=$(printf '%s' "$rest" | sed 's/^(alias of \([^:]*\):.*/\1/')
+		[ "$(readlink "$dest$path" 2>/dev/null)" = "$to" ] ||
+			{ echo "not a symlink to $to: $path"; bad=1; } ;;
+	*) echo "docs/install.md: '$path $rest': only '(not on TARGET...: why)' or '(alias of NAME: why)' may follow a path"; bad=1; continue ;;
 	esac
 	if grep -qx "$re" <<<"$files"; then
 		[ $excluded = 1 ] && { echo "installed although not shipped on $target: $path $rest"; bad=1; }

@@ -3,12 +3,12 @@
 #
 # demo-guest.sh: what `make demo` runs inside the VM (docs/demo.md). Brings up
 # the whole low level on the simulated robot (tests/vm/stack/lib.sh: kernel
-# modules, rs485-sim, robot-sim with its CANopen drives on vcan0, the
+# modules, advee-rs485-sim, advee-robot-sim with its CANopen drives on vcan0, the
 # supervisor with every driver daemon), lets the planner stand-in drive the
-# scripted path, and shows the robot through diagnostic_center:
+# scripted path, and shows the robot through advee-diagnostic-center:
 #   interactive: the terminal UI on the VM's console (the caller's terminal);
 #                quitting it (q) ends the demo and the VM powers off
-#   --for 30s:   diagnostic_center --text prints a summary every 5 s for that
+#   --for 30s:   advee-diagnostic-center --text prints a summary every 5 s for that
 #                long; exit 0 when the stack ran and the robot moved
 #
 # usage: demo-guest.sh [--for DURATION] [--tui] [--rows N --cols N --term TERM]
@@ -65,15 +65,15 @@ if ! stack_up; then
 	[ "$mode" = tui ] && sleep 5
 	exit 1
 fi
-echo "Running: kernel modules ts7800-sim ts-uart ts7800-dio n_rs485 ts7800-dio-i2c max6615 vcan; rs485-sim;"
-echo "  robot-sim (robot drives: $STACK_ROBOT_DRIVES); advee-watchdog with $STACK_MODULES"
+echo "Running: kernel modules ts7800-sim ts-uart ts7800-dio n_rs485 ts7800-dio-i2c max6615 vcan; advee-rs485-sim;"
+echo "  advee-robot-sim (robot drives: $STACK_ROBOT_DRIVES); advee-watchdog with $STACK_MODULES"
 
 PATH_FILE=$ROBOTSIM_CONF/square-path.yaml
 drive_args=(--home --home-wait 3 --beacons 1,2,3,4,5,6,7,8 --quiet)
 if [ "$STACK_ROBOT_DRIVES" = can ]; then
 	echo "Planner stand-in: advee-drive-script plays $(basename "$PATH_FILE") onto LL_CMD_MOTION at 10 Hz"
 else
-	echo "robot-sim plays $(basename "$PATH_FILE") itself (no simulated CAN drives yet): LL_CMD_MOTION does not move it"
+	echo "advee-robot-sim plays $(basename "$PATH_FILE") itself (no simulated CAN drives yet): LL_CMD_MOTION does not move it"
 fi
 
 # The web dashboard (docs/web-dashboard.md) when the host forwards a port to
@@ -101,16 +101,16 @@ if [ "$mode" = tui ]; then
 		"$DIAGNOSTIC_CENTER"
 		rc=$?
 	else
-		echo "diagnostic_center is not built: showing the LCM traffic instead (Ctrl-C ends the demo)"
+		echo "advee-diagnostic-center is not built: showing the LCM traffic instead (Ctrl-C ends the demo)"
 		trap 'true' INT
 		"$STACK_LISTEN" --seconds 86400
 		rc=0
 	fi
 	clear 2>/dev/null
-	echo "demo: diagnostic_center exited ($rc); stopping the stack and powering off"
+	echo "demo: advee-diagnostic-center exited ($rc); stopping the stack and powering off"
 	stack_down
 	# The harness counts a program that printed no TAP point as a failure.
-	tap_result 0 "demo: the operator ended the interactive session (diagnostic_center exit status $rc)"
+	tap_result 0 "demo: the operator ended the interactive session (advee-diagnostic-center exit status $rc)"
 	exit 0
 fi
 
@@ -122,7 +122,7 @@ if stack_has diagnostic-center; then
 	"$DIAGNOSTIC_CENTER" --text --for "$for_" --period "$PERIOD"
 	rc=$?
 else
-	# Until diagnostic_center exists: the decoded messages of the channels the
+	# Until advee-diagnostic-center exists: the decoded messages of the channels the
 	# summary would show, the last of each every period.
 	secs=${for_%s}
 	rc=0
@@ -135,8 +135,8 @@ else
 		done
 	done
 fi
-echo "demo: ran $(($(date +%s) - t0)) s; diagnostic_center exit status $rc"
+echo "demo: ran $(($(date +%s) - t0)) s; advee-diagnostic-center exit status $rc"
 stack_down
 # The harness counts a program that printed no TAP point as a failure.
-tap_result "$rc" "demo: the stack ran $for_ on the simulated robot and diagnostic_center summarised it"
+tap_result "$rc" "demo: the stack ran $for_ on the simulated robot and advee-diagnostic-center summarised it"
 exit $rc

@@ -6,7 +6,17 @@
 #   cli_programs                 the programs of the install manifest
 #                                (docs/install.md): /usr/bin, /usr/sbin and
 #                                /usr/libexec/advee/NAME, one path a line; a
-#                                new program cannot escape the checks
+#                                new program cannot escape the checks;
+#                                not the compatibility aliases
+#   cli_aliases                  those aliases: "PATH TARGET" a line (the
+#                                manifest's "(alias of TARGET: why)")
+#   cli_name_ok PATH             whether PATH's name follows the naming rule
+#                                (docs/command-line.md "Names"): in /usr/bin
+#                                and /usr/sbin it starts with "advee-" and
+#                                has no "_"; /usr/libexec/advee is the
+#                                namespace of the daemons' thesis names
+#   cli_check_alias ROOT PATH TARGET  2 points: ROOT/PATH is a symlink to
+#                                TARGET and --version answers as TARGET
 #   cli_version                  the version of the build (debian/changelog),
 #                                read once (dpkg-parsechangelog is a Perl
 #                                program: over a second a call under TCG)
@@ -19,9 +29,22 @@
 
 CLI_REPO=${CLI_REPO:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
 
+cli_manifest() { sed -n '/<!-- manifest:begin -->/,/<!-- manifest:end -->/p' "$CLI_REPO/docs/install.md"; }
+
 cli_programs() {
-	sed -n '/<!-- manifest:begin -->/,/<!-- manifest:end -->/p' "$CLI_REPO/docs/install.md" |
-		awk '$1 ~ "^/usr/(bin|sbin)/[^/*]+$" || $1 ~ "^/usr/libexec/advee/[^/*]+$" { print $1 }'
+	cli_manifest | awk '$2 != "(alias" && ($1 ~ "^/usr/(bin|sbin)/[^/*]+$" || $1 ~ "^/usr/libexec/advee/[^/*]+$") { print $1 }'
+}
+
+cli_aliases() {
+	cli_manifest | awk '$2 == "(alias" && $3 == "of" { t = $4; sub(":$", "", t); print $1, t }'
+}
+
+cli_name_ok() {
+	case $1 in
+	/usr/bin/advee-* | /usr/sbin/advee-*) case ${1##*/} in *_*) return 1 ;; esac ;;
+	/usr/libexec/advee/*) ;;
+	*) return 1 ;;
+	esac
 }
 
 cli_version() { dpkg-parsechangelog -l "$CLI_REPO/debian/changelog" -S Version; }
@@ -45,6 +68,14 @@ cli_result() {
 	else
 		tap_result "$1" "$2${3:+ # TODO $3}"
 	fi
+}
+
+cli_check_alias() {
+	local root=$1 path=$2 target=$3 out
+	tap_is "${path##*/}: a symlink to $target (compatibility alias)" "$(readlink "$root$path")" "$target"
+	[ -n "$CLI_VERSION" ] || CLI_VERSION=$(cli_version)
+	out=$(timeout 10 "$root$path" --version </dev/null 2>&1) || true
+	tap_is "${path##*/} --version: the program it names" "$out" "$target $CLI_VERSION"
 }
 
 cli_check() {

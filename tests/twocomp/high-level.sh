@@ -10,7 +10,7 @@
 #   the same tolerance of the ground truth B receives (stack_path_points);
 # - every data channel arrives at its nominal rate (counts and rates
 #   reported per channel; A counts the loss on both listeners' output);
-# - diagnostic_center --text shows every module and nothing stale although
+# - advee-diagnostic-center --text shows every module and nothing stale although
 #   A's clock is 5 s ahead (it ages messages by receive time; the measured
 #   clock difference is measured: receive time less the sender's utime);
 # - while B drives, the host takes the link down for 3 s: when it returns B
@@ -21,7 +21,7 @@ stack_require canbus sim-pose diagnostic-center
 
 WEB=$STACK_UL/web/advee-web
 PATH_FILE=$ROBOTSIM_CONF/square-path.yaml
-# The nominal rates of advee/msgs/channels.hpp (docs/modules.md) and robot-sim.
+# The nominal rates of advee/msgs/channels.hpp (docs/modules.md) and advee-robot-sim.
 RATES="LL_DATA_SRFS:4 LL_DATA_ODO:4 LL_DATA_DRIVES:4 LL_DATA_BEACONS:1 LL_DATA_POWER:1 LL_DATA_TEMPERATURE:1 LL_DATA_FANS:1 SIM_DATA_POSE:10"
 # After the link returns, B must see the robot drive again within this:
 # the drives leave the quick stop on the next command (10 Hz) and ramp to
@@ -51,7 +51,7 @@ LOGGER=$!
 STACK_PIDS="$LISTEN $DIAG_PID $WEB_PID $LOGGER"
 trap 'for p in $STACK_PIDS; do kill $p 2>/dev/null; done' EXIT
 wait_lcm_listening "$LISTEN" 20 || tap_diag "advee-stack-listen did not subscribe"
-wait_lcm_listening "$DIAG_PID" 20 || tap_diag "diagnostic_center did not subscribe"
+wait_lcm_listening "$DIAG_PID" 20 || tap_diag "advee-diagnostic-center did not subscribe"
 
 # 1. The scripted path, driven from here.
 stack_drive "$PATH_FILE" --home --home-wait 3 --hold 3 --beacons 1,2,3,4,5,6,7,8
@@ -90,10 +90,10 @@ tap_diag "CM_DATA_STATE received on B minus its sender's utime, median: $skew s 
 tap_ok "A's clock is more than 2 s ahead of B's (measured: $skew s)" awk -v s="${skew:-x}" 'BEGIN { exit !(s != "x" && s < -2) }'
 last_summary() { awk '/^summary /{ b = "" } { b = b $0 "\n" } END { printf "%s", b }' "$DIAG"; }
 sum=$(last_summary)
-printf '%s\n' "$sum" | grep -E '^(summary|modules|module_ages|odometry|drives)' | sed 's/^/# diagnostic_center: /'
+printf '%s\n' "$sum" | grep -E '^(summary|modules|module_ages|odometry|drives)' | sed 's/^/# advee-diagnostic-center: /'
 missing=$(for m in $TWOCOMP_MODULES; do printf '%s\n' "$sum" | grep -q "^modules .*$m=RUN" || echo "$m"; done)
 stale=$(printf '%s\n' "$sum" | grep -E 'stale=1|=[0-9.]+!' | cut -c1-60)
-tap_ok "diagnostic_center on B: every module in RUN, nothing stale though A's clock is 5 s ahead (missing: ${missing:-none}; stale: ${stale:-none})" \
+tap_ok "advee-diagnostic-center on B: every module in RUN, nothing stale though A's clock is 5 s ahead (missing: ${missing:-none}; stale: ${stale:-none})" \
 	test -z "$missing$stale"
 
 # 4. The link drops for 3 s while B drives.
@@ -119,8 +119,8 @@ n0=$(grep -c '^summary ' "$DIAG")
 wait_until 20 sh -c "[ \$(grep -c '^summary ' '$DIAG') -ge $((n0 + 2)) ]"
 sum=$(last_summary)
 stale=$(printf '%s\n' "$sum" | grep -E 'stale=1|=[0-9.]+!' | cut -c1-60)
-printf '%s\n' "$sum" | grep -E '^(summary|module_ages|drives)' | sed 's/^/# diagnostic_center after the drop: /'
-tap_ok "diagnostic_center caught up after the drop: nothing stale (${stale:-none})" test -z "$stale"
+printf '%s\n' "$sum" | grep -E '^(summary|module_ages|drives)' | sed 's/^/# advee-diagnostic-center after the drop: /'
+tap_ok "advee-diagnostic-center caught up after the drop: nothing stale (${stale:-none})" test -z "$stale"
 kill -TERM "$STACK_DRIVE_PID" 2>/dev/null
 wait "$STACK_DRIVE_PID" 2>/dev/null
 

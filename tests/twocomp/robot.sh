@@ -9,7 +9,7 @@
 # link) until the host says stop, then checks what only A can see:
 # - the link drop: the drives quick-stopped within the 1 s command timeout
 #   after the last LL_CMD_MOTION that came through (driver_canbus's own
-#   report, LL_DATA_DRIVES stopped=1, and the true speed of robot-sim);
+#   report, LL_DATA_DRIVES stopped=1, and the true speed of advee-robot-sim);
 # - nothing on A restarted: one pid per module from start to end, and the
 #   supervisor counted no restart;
 # - the loss per channel over B's scripted path, both ways: the messages of
@@ -61,7 +61,7 @@ t_stop=$(field "$stop" t) t_still=$(field "$still" t)
 latency=$(awk -v a="$t_last" -v b="$t_stop" 'BEGIN { if (b == "") print "none"; else printf "%.3f", b - a }')
 standstill=$(awk -v a="$t_last" -v b="$t_still" 'BEGIN { if (b == "") print "none"; else printf "%.3f", b - a }')
 tap_diag "quick stop reported $latency s after the last command ($stop)"
-tap_diag "robot-sim's true speed 0 after $standstill s"
+tap_diag "advee-robot-sim's true speed 0 after $standstill s"
 tap_ok "the link drop cut the commands for >= 2 s (B drives at 10 Hz; the host takes the link down for 3 s)" \
 	awk -v g="$gap" 'BEGIN { exit !(g >= 2) }'
 tap_ok "the drives quick-stopped for the command timeout $latency s after the last command (limit $CMD_TIMEOUT_S s + $STOP_MARGIN_S s)" \

@@ -1,6 +1,6 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# canopenctl against a simulated EPOS on vcan: typed SDO (expedited,
+# advee-canopenctl against a simulated EPOS on vcan: typed SDO (expedited,
 # segmented and block), a scan with identities, abort codes, SDO timeout with
 # the abort on the bus, PDO dump and remap, NMT, CiA 402 status and power
 # control, monitor, hb.
@@ -10,7 +10,7 @@ tap_plan 23
 
 start_sim epos -n 3 -p epos --sdo-abort 6060:00=08000022 || exit 1
 start_sim slow -n 4 -p icla --sdo-delay-ms 800 || exit 1
-ctl() { "$BIN/canopenctl" -i "$IF" "$@"; }
+ctl() { "$BIN/advee-canopenctl" -i "$IF" "$@"; }
 
 tap_is "expedited read of the device type" "$(ctl read 3 1000 u32)" "131474 (0x20192)"
 tap_is "segmented read of the device name" "$(ctl read 3 1008 str)" "EPOS 70/10 (simulated)"
@@ -30,19 +30,19 @@ tap_is "scan finds node 3 with its identity, not the silent nodes 1 and 2" "$(ct
 
 out=$(ctl read 3 2222 2>&1); rc=$?
 tap_is "missing object: exit 1 with the abort text" "$rc:$out" \
-	"1:canopenctl: read: object does not exist in the object dictionary (0x06020000)"
+	"1:advee-canopenctl: read: object does not exist in the object dictionary (0x06020000)"
 out=$(ctl write 3 6041 u16 1 2>&1); rc=$?
 tap_is "read-only object refuses a write" "$rc:$out" \
-	"1:canopenctl: write: attempt to write a read-only object (0x06010002)"
+	"1:advee-canopenctl: write: attempt to write a read-only object (0x06010002)"
 
 out=$(ctl write 3 6060 i8 3 2>&1); rc=$?
 tap_is "injected abort code reaches the tool" "$rc:$out" \
-	"1:canopenctl: write: data cannot be transferred or stored to the application because of the present device state (0x08000022)"
+	"1:advee-canopenctl: write: data cannot be transferred or stored to the application because of the present device state (0x08000022)"
 
 start_candump
 out=$(ctl -t 200 read 4 1000 2>&1); rc=$?
 stop_candump
-tap_is "slow server: local timeout" "$rc:$out" "1:canopenctl: read: SDO protocol timed out (0x05040000)"
+tap_is "slow server: local timeout" "$rc:$out" "1:advee-canopenctl: read: SDO protocol timed out (0x05040000)"
 tap_ok "the timeout sent abort 0x05040000 to the server" grep -qx "604#8000100000000405" "$SCR/frames"
 
 ctl pdo 3 >"$SCR/pdo" 2>&1
@@ -63,8 +63,8 @@ tap_is "disable from quick stop" "$(ctl disable 3)" "switch on disabled"
 
 ctl write 3 1017 u16 50
 tap_ok "monitor decodes the drive's heartbeat" \
-	bash -c "'$BIN/canopenctl' -i '$IF' monitor 4 | grep -q 'heartbeat node 3 operational'"
-tap_is "hb shows the drive's heartbeat with its state" "$(timeout 10 "$BIN/canopenctl" -i "$IF" hb 1)" \
+	bash -c "'$BIN/advee-canopenctl' -i '$IF' monitor 4 | grep -q 'heartbeat node 3 operational'"
+tap_is "hb shows the drive's heartbeat with its state" "$(timeout 10 "$BIN/advee-canopenctl" -i "$IF" hb 1)" \
 	"heartbeat node 3 operational"
 ctl nmt reset-node all
 tap_ok "reset node: boot-up seen by the drive log" wait_line "$SCR/epos.log" "node 3 nmt pre-operational" 5

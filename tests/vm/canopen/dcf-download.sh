@@ -1,6 +1,6 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# canopenctl dcf (issue 23) against simulated drives as processes on vcan:
+# advee-canopenctl dcf (issue 23) against simulated drives as processes on vcan:
 # a DCF made of the shipped EPOS EDS (heartbeat 150 ms, TPDO2 remapped) is
 # downloaded with the identity checked first and the node started; its
 # concise DCF, written without a bus, configures the node again after a
@@ -25,8 +25,8 @@ awk -v vals='1017=150;1801sub1=$NODEID+0x40000280;1A01sub2=0x60640020;1A01sub0=2
 sed 's/^DefaultValue=0x00000065$/DefaultValue=0x00000066/' "$DATA/icla-d065.eds" >"$SCR/other-icla.eds"
 start_sim epos -n 1 -p epos || exit 1
 start_sim icla -n 2 -p icla --eds "$SCR/other-icla.eds" || exit 1
-CTL=$BIN/canopenctl
-# read NODE OBJECT TYPE: the value alone (canopenctl prints "150 (0x96)").
+CTL=$BIN/advee-canopenctl
+# read NODE OBJECT TYPE: the value alone (advee-canopenctl prints "150 (0x96)").
 read_value() { "$CTL" -i "$IF" read "$@" | awk '{ print $1 }'; }
 
 # 1. The DCF: identity checked, objects written, started.

@@ -1,6 +1,6 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# driver_canbus on vcan0 against two canopen-sim-drive processes (EPOS node 1,
+# driver_canbus on vcan0 against two advee-canopen-sim-drive processes (EPOS node 1,
 # IclA node 2), checked through LCM and candump: boot, LL_DATA_DRIVES at
 # 4 Hz, LL_CMD_MOTION at 10 Hz moves the drives (actual speed within
 # 0.01 m/s, steering within 0.001 rad), the 1 s command timeout as a
@@ -9,7 +9,7 @@
 # PAUSE/RUN, a killed IclA simulator reported and booted again when it comes
 # back (with the master's own EMCY 0x8130 and its reset), SIGTERM, and exit
 # 0x22 when the drives do not answer; the master's
-# own dictionary read over SDO (canopenctl).
+# own dictionary read over SDO (advee-canopenctl).
 . "$(dirname "$0")/lib.sh"
 . "$VMTEST_REPO/tests/lib/candump.sh"
 
@@ -45,7 +45,7 @@ tap_rate "LL_DATA_DRIVES at 4 Hz" "$SCR/boot-enabled.out" LL_DATA_DRIVES 4
 tap_is "two boot notices (number 10)" "$(errors_numbered "$SCR/boot.out" 10)" 2
 [ "$n" -ge 1 ] || sed 's/^/# canbus.err: /' "$SCR/canbus.err" | tail -20
 tap_is "the master serves its dictionary as node 127: 0x1017 is its 100 ms heartbeat" \
-	"$("$CANBIN/canopenctl" -i "$IF" read 127 1017 u16 2>&1)" "100 (0x64)"
+	"$("$CANBIN/advee-canopenctl" -i "$IF" read 127 1017 u16 2>&1)" "100 (0x64)"
 
 # 1. Motion at 10 Hz for 3.5 s, steering not homed yet; the listener runs
 # on past the last command to see the timeout.

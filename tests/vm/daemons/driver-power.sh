@@ -52,7 +52,7 @@ tap_is "LL_DATA_POWER shows it (mask 45)" "$(field "$(grep '^LL_DATA_POWER ' "$S
 
 # send_us COMMAND: one control command, sent from python so that the time
 # printed (CLOCK_REALTIME, us) is taken right before the datagram leaves
-# (the rs485-sim client takes about a second to start under TCG).
+# (the advee-rs485-sim client takes about a second to start under TCG).
 send_us() {
 	python3 -c 'import socket, sys, time
 s = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)

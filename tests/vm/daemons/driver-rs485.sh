@@ -1,11 +1,11 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
 # driver_rs485 on the simulated buses (simulated FPGA -> ts-uart -> n_rs485
-# -> rs485-sim), one instance per bus as on the robot: LL_DATA_SRFS and
+# -> advee-rs485-sim), one instance per bus as on the robot: LL_DATA_SRFS and
 # LL_DATA_ODO at 4 Hz with the ranges and tick rates the simulator was set
 # to (straight and turning, against the Ackermann forward model), PAUSE and
 # RUN, a board that stops answering going error-passive and off (no longer
-# polled) and back after `rs485ctl reset-node`; LL_DATA_BEACONS at 1 Hz with
+# polled) and back after `advee-rs485ctl reset-node`; LL_DATA_BEACONS at 1 Hz with
 # the bearings of the beacons named on LL_DATA_ACTIVE_BEACONS; SIGTERM exit 0.
 . "$(dirname "$0")/lib.sh"
 

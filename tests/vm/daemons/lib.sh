@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-2.0
 # Helpers of the daemons VM suite (sourced): LCM on the guest's loopback and
 # the background-process helpers of the modules suite, the simulated FPGA
-# and rs485-sim of the rs485 suite, and the daemons' binaries.
+# and advee-rs485-sim of the rs485 suite, and the daemons' binaries.
 . "$VMTEST_REPO/tests/vm/modules/lib.sh"
 . "$VMTEST_REPO/tests/vm/rs485/common.inc"
 
@@ -9,7 +9,7 @@ DAEMONS=$VMTEST_BUILD/userland/daemons
 DRIVER_RS485=$DAEMONS/driver_rs485/driver_rs485
 DRIVER_POWER=$DAEMONS/driver_power/driver_power
 DRIVER_CANBUS=$DAEMONS/driver_canbus/driver_canbus
-RS485CTL=$LIBBIN/rs485ctl
+RS485CTL=$LIBBIN/advee-rs485ctl
 DSUITE=$VMTEST_REPO/tests/vm/daemons
 
 daemons_cleanup() {
@@ -18,14 +18,14 @@ daemons_cleanup() {
 	lcm_net_down
 }
 
-# daemons_rs485_up PROGRAM...: LCM route, simulated FPGA, rs485-sim with
+# daemons_rs485_up PROGRAM...: LCM route, simulated FPGA, advee-rs485-sim with
 # the robot's boards (boards.yaml); bails out if anything is missing.
 daemons_rs485_up() {
-	rs485_setup "$SIMBIN/rs485-sim" "$PROBE" "$LCMCTL" "$@"
+	rs485_setup "$SIMBIN/advee-rs485-sim" "$PROBE" "$LCMCTL" "$@"
 	trap daemons_cleanup EXIT
 	lcm_net_up || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
 	if ! start_sim "$DSUITE/boards.yaml"; then
-		echo "Bail out! rs485-sim did not start"
+		echo "Bail out! advee-rs485-sim did not start"
 		sed 's/^/# /' "$SCR/sim.err"
 		exit 1
 	fi
@@ -52,7 +52,7 @@ mean_field() {
 		awk '{ s += $1; n++ } END { if (n) printf "%.4f\n", s / n }'
 }
 
-# The CAN side of the driver_canbus tests: vcan0 and canopen-sim-drive.
+# The CAN side of the driver_canbus tests: vcan0 and advee-canopen-sim-drive.
 CANBIN=$VMTEST_BUILD/userland/canopen
 IF=vcan0
 SIMS=()
@@ -72,7 +72,7 @@ canbus_cleanup() {
 # loopback, vcan0 up (bails out otherwise); cleans up on exit.
 canbus_up() {
 	local b
-	for b in "$@" "$CANBIN/canopen-sim-drive"; do
+	for b in "$@" "$CANBIN/advee-canopen-sim-drive"; do
 		[ -x "$b" ] || { echo "Bail out! $b not built"; exit 1; }
 	done
 	trap canbus_cleanup EXIT
@@ -87,7 +87,7 @@ canbus_up() {
 sim_drive() {
 	local name=$1
 	shift
-	"$CANBIN/canopen-sim-drive" -i "$IF" "$@" >>"$SCR/$name.log" 2>&1 &
+	"$CANBIN/advee-canopen-sim-drive" -i "$IF" "$@" >>"$SCR/$name.log" 2>&1 &
 	SIMS+=($!)
 	eval "SIM_$name=$!"
 	wait_line "$SCR/$name.log" "ready on" 20 >/dev/null

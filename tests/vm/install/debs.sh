@@ -78,7 +78,7 @@ tap_is "advee-watchdog.service enabled (deb-systemd-helper)" "$(readlink "$C$wan
 tap_ok "advee-watchdog.service started by the postinst" grep -qx 'deb-systemd-invoke start advee-watchdog.service' "$C/tmp/systemd-calls"
 tap_is "the per-daemon units are not enabled (they conflict with the supervisor)" \
 	"$(cd "$C/etc/systemd/system/multi-user.target.wants" && find . -name 'driver_*')" ""
-tap_is "rs485ctl --version from the package" "$(in_chroot rs485ctl --version)" "rs485ctl $ver"
+tap_is "advee-rs485ctl --version from the package" "$(in_chroot advee-rs485ctl --version)" "advee-rs485ctl $ver"
 
 # Upgrade: an edited conffile stays, the daemon is restarted.
 echo "# edited by the administrator" >>"$C/etc/advee/watchdog.yaml"

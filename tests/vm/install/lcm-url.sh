@@ -91,14 +91,14 @@ tap_ok "advee-watchdog and the module it starts announce on the configured URL" 
 
 # Subscribers: each binds the configured port.
 bad=
-bg "$DEST/usr/bin/diagnostic_center" --text --for 60s --period 10s >/dev/null 2>&1
-wait_udp_bound "$LAST" "$PORT" 20 || bad="$bad diagnostic_center"
+bg "$DEST/usr/bin/advee-diagnostic-center" --text --for 60s --period 10s >/dev/null 2>&1
+wait_udp_bound "$LAST" "$PORT" 20 || bad="$bad advee-diagnostic-center"
 bg "$DEST/usr/bin/advee-web" --listen 127.0.0.1:0 --root "$DEST/usr/share/advee/web" >"$scratch/web.log" 2>&1
 wait_udp_bound "$LAST" "$PORT" 20 || bad="$bad advee-web"
 bg "$DEST/usr/bin/advee-lcmctl" echo CM_DATA_STATE >/dev/null 2>&1
 wait_udp_bound "$LAST" "$PORT" 20 || bad="$bad advee-lcmctl"
-bg "$DEST/usr/bin/robot-sim-pose" >/dev/null 2>&1
-wait_udp_bound "$LAST" "$PORT" 20 || bad="$bad robot-sim-pose"
+bg "$DEST/usr/bin/advee-robot-sim-pose" >/dev/null 2>&1
+wait_udp_bound "$LAST" "$PORT" 20 || bad="$bad advee-robot-sim-pose"
 bg "$DEST/usr/libexec/advee/tests/advee-stack-listen" --seconds 60 >/dev/null 2>&1
 wait_udp_bound "$LAST" "$PORT" 20 || bad="$bad advee-stack-listen"
 tap_is "every installed subscriber binds the configured port" "$bad" ""
@@ -108,11 +108,11 @@ printf 'path:\n  - {speed_mps: 0.1, steering_deg: 0, duration_s: 0.5}\n' >"$scra
 tap_ok "advee-drive-script publishes on the configured URL" \
 	"$DEST/usr/bin/advee-drive-script" --path "$scratch/path.yaml" --hold 0 --quiet
 tap_ok "... its LL_CMD_MOTION is heard there" wait_line "$scratch/heard" '^LL_CMD_MOTION ' 10
-bg "$DEST/usr/bin/robot-sim" --map "$DEST/etc/advee/robotsim/room.yaml" --robot "$DEST/etc/advee/robotsim/robot.yaml" \
+bg "$DEST/usr/bin/advee-robot-sim" --map "$DEST/etc/advee/robotsim/room.yaml" --robot "$DEST/etc/advee/robotsim/robot.yaml" \
 	--path "$scratch/path.yaml" --duration 30 --lcm
-tap_ok "robot-sim --lcm: its SIM_DATA_POSE is heard on the configured URL" wait_line "$scratch/heard" '^SIM_DATA_POSE ' 20
+tap_ok "advee-robot-sim --lcm: its SIM_DATA_POSE is heard on the configured URL" wait_line "$scratch/heard" '^SIM_DATA_POSE ' 20
 
 # --lcm overrides the file.
-bg "$DEST/usr/bin/diagnostic_center" --text --for 60s --period 10s --lcm "udpm://239.255.76.67:$OTHER_PORT?ttl=0" >/dev/null 2>&1
-tap_ok "diagnostic_center --lcm URL overrides the file (binds port $OTHER_PORT)" wait_udp_bound "$LAST" "$OTHER_PORT" 20
+bg "$DEST/usr/bin/advee-diagnostic-center" --text --for 60s --period 10s --lcm "udpm://239.255.76.67:$OTHER_PORT?ttl=0" >/dev/null 2>&1
+tap_ok "advee-diagnostic-center --lcm URL overrides the file (binds port $OTHER_PORT)" wait_udp_bound "$LAST" "$OTHER_PORT" 20
 tap_finish

@@ -1,10 +1,10 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# robot-sim --can vcan0: the robot's simulated EPOS and IclA commanded by
-# canopenctl as driver_canbus would. The IclA homes (0 = straight ahead) and
+# advee-robot-sim --can vcan0: the robot's simulated EPOS and IclA commanded by
+# advee-canopenctl as driver_canbus would. The IclA homes (0 = straight ahead) and
 # turns the steering; the EPOS in profile velocity moves the robot at the
 # commanded speed; driving into the east wall stops the robot at the wall
-# and engages the PSC1's PAUSE, seen by rs485ctl watch on the power link; a
+# and engages the PSC1's PAUSE, seen by advee-rs485ctl watch on the power link; a
 # quick stop releases it. The true pose comes from SIM_DATA_POSE.
 . "$(dirname "$0")/lib.sh"
 
@@ -94,6 +94,6 @@ sed 's/^/# watch: /' "$SCR/watch.out"
 kill "$R"
 wait_exit "$R" 10
 rc=$?
-tap_is "robot-sim exits 0 on SIGTERM" "$rc" 0
+tap_is "advee-robot-sim exits 0 on SIGTERM" "$rc" 0
 [ "$rc" = 0 ] || sed 's/^/# robot.err: /' "$SCR/robot.err"
 tap_finish

@@ -1,15 +1,15 @@
 # SPDX-License-Identifier: GPL-2.0
 # Helpers of the robotsim VM suite (sourced): vcan0, the simulated FPGA with
-# rs485-sim and the robot's boards (tests/vm/daemons/boards.yaml), LCM on the
-# loopback, robot-sim with its drives on vcan0, canopenctl, the true pose.
+# advee-rs485-sim and the robot's boards (tests/vm/daemons/boards.yaml), LCM on the
+# loopback, advee-robot-sim with its drives on vcan0, advee-canopenctl, the true pose.
 . "$VMTEST_REPO/tests/vm/modules/lib.sh"
 . "$VMTEST_REPO/tests/vm/rs485/common.inc"
 
 RS=$VMTEST_BUILD/userland/robotsim
-ROBOT_SIM=$RS/robot-sim
-POSE=$RS/robot-sim-pose
-CANOPENCTL=$VMTEST_BUILD/userland/canopen/canopenctl
-RS485CTL=$VMTEST_BUILD/userland/rs485/rs485ctl
+ROBOT_SIM=$RS/advee-robot-sim
+POSE=$RS/advee-robot-sim-pose
+CANOPENCTL=$VMTEST_BUILD/userland/canopen/advee-canopenctl
+RS485CTL=$VMTEST_BUILD/userland/rs485/advee-rs485ctl
 CONF=$VMTEST_REPO/userland/robotsim/conf
 IF=vcan0
 
@@ -21,10 +21,10 @@ robotsim_cleanup() {
 	lcm_net_down
 }
 
-# robotsim_up PROGRAM...: everything but robot-sim; bails out if a program
+# robotsim_up PROGRAM...: everything but advee-robot-sim; bails out if a program
 # is missing or something does not come up.
 robotsim_up() {
-	rs485_setup "$SIMBIN/rs485-sim" "$ROBOT_SIM" "$POSE" "$CANOPENCTL" "$@"
+	rs485_setup "$SIMBIN/advee-rs485-sim" "$ROBOT_SIM" "$POSE" "$CANOPENCTL" "$@"
 	trap robotsim_cleanup EXIT
 	lcm_net_up || { echo "Bail out! cannot set up loopback multicast"; exit 1; }
 	modprobe n_rs485 || { echo "Bail out! modprobe n_rs485"; exit 1; }
@@ -33,7 +33,7 @@ robotsim_up() {
 		exit 1
 	fi
 	if ! start_sim "$VMTEST_REPO/tests/vm/daemons/boards.yaml"; then
-		echo "Bail out! rs485-sim did not start"
+		echo "Bail out! advee-rs485-sim did not start"
 		sed 's/^/# /' "$SCR/sim.err"
 		exit 1
 	fi
@@ -47,8 +47,8 @@ robot_yaml() {
 	grep -q "start_deg: $3 " "$SCR/robot.yaml" || { echo "Bail out! robot.yaml has no drives.steering.start_deg"; exit 1; }
 }
 
-# start_robot: robot-sim on $SCR/robot.yaml with its drives on $IF, the
-# sensors to rs485-sim, the true pose on LCM; $R is its pid.
+# start_robot: advee-robot-sim on $SCR/robot.yaml with its drives on $IF, the
+# sensors to advee-rs485-sim, the true pose on LCM; $R is its pid.
 start_robot() {
 	bg "$ROBOT_SIM" -m "$CONF/room.yaml" -r "$SCR/robot.yaml" --can "$IF" --rs485-control "$CTL" --lcm --print \
 		>"$SCR/robot.out" 2>"$SCR/robot.err"
@@ -63,7 +63,7 @@ pose() { "$POSE" -n 1 -t 5; }
 cond() { eval "$1"; }
 
 # wait_status NODE MASK SECONDS: until the statusword has every bit of MASK
-# (canopenctl takes a second or so per call under TCG); prints the last one.
+# (advee-canopenctl takes a second or so per call under TCG); prints the last one.
 status_has() {
 	STATUS=$(ctl read "$1" 6041 u16)
 	(( (${STATUS%% *} & $2) == $2 ))

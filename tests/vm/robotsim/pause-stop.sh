@@ -1,11 +1,11 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# The bumper's way into the stack: robot-sim drives into the east wall (its
+# The bumper's way into the stack: advee-robot-sim drives into the east wall (its
 # EPOS on vcan0 in profile velocity), the bumper engages the PAUSE line,
 # the simulated BR-PSC1 sends its PAUSE event on the power link and
 # driver_power publishes LL_EVENT_STOP; the quick stop driver_canbus would
-# answer with (canopenctl here) releases PAUSE and LL_EVENT_STOP stop=0
-# follows. The robot never gets past the wall (robot-sim's printed poses).
+# answer with (advee-canopenctl here) releases PAUSE and LL_EVENT_STOP stop=0
+# follows. The robot never gets past the wall (advee-robot-sim's printed poses).
 . "$(dirname "$0")/lib.sh"
 
 DRIVER_POWER=$VMTEST_BUILD/userland/daemons/driver_power/driver_power
@@ -48,6 +48,6 @@ tap_is "quick stop: PAUSE released, LL_EVENT_STOP stop=0" "$(field "$s2" stop)" 
 p=$(pose)
 tap_is "released: PAUSE line off, robot still at the wall" "$(field "$p" engaged) $(field "$p" speed)" "0 0.0000"
 maxx=$(awk '/^t=/ { for (i = 1; i <= NF; i++) if ($i ~ /^x=/ && !seen[NR]++) { sub(/x=/, "", $i); if ($i > m) m = $i } } END { print m }' "$SCR/robot.out")
-tap_diag "largest x robot-sim printed: $maxx"
+tap_diag "largest x advee-robot-sim printed: $maxx"
 tap_ok "never past the contact pose (x <= 9.1)" awk -v m="$maxx" 'BEGIN { exit !(m > 9.0 && m <= 9.1) }'
 tap_finish

@@ -6,11 +6,11 @@
 # (ENOTCONN) and after a hangup (EIO), Bus destruction within 1 s, re-attach.
 . "$(dirname "$0")/common.inc"
 
-rs485_setup "$SIMBIN/rs485-sim" "$LIBBIN/rs485-bus-events"
+rs485_setup "$SIMBIN/advee-rs485-sim" "$LIBBIN/rs485-bus-events"
 if ! start_sim "$SUITE/stack.yaml"; then
-	echo "Bail out! rs485-sim did not start"
+	echo "Bail out! advee-rs485-sim did not start"
 	sed 's/^/# /' "$SCR/sim.err"
 	exit 1
 fi
 # The program prints the plan and the points; its exit status is the verdict.
-"$LIBBIN/rs485-bus-events" "$SIMBIN/rs485-sim" "$CTL" /dev/ttyTSU2 0x01
+"$LIBBIN/rs485-bus-events" "$SIMBIN/advee-rs485-sim" "$CTL" /dev/ttyTSU2 0x01

@@ -7,9 +7,9 @@
 # userland/rs485sim/vmtest/rs485_stack_test.cpp (TAP on stdout).
 . "$(dirname "$0")/common.inc"
 
-rs485_setup "$SIMBIN/rs485-sim" "$SIMBIN/rs485-stack-test"
+rs485_setup "$SIMBIN/advee-rs485-sim" "$SIMBIN/rs485-stack-test"
 if ! start_sim "$SUITE/stack.yaml" -v; then
-	echo "Bail out! rs485-sim did not start"
+	echo "Bail out! advee-rs485-sim did not start"
 	sed 's/^/# /' "$SCR/sim.err"
 	exit 1
 fi

@@ -1,15 +1,15 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# rs485ctl against rs485-sim: a scan of each bus finds exactly the simulated
+# advee-rs485ctl against advee-rs485-sim: a scan of each bus finds exactly the simulated
 # boards with their firmware versions (stack.yaml), a raw instruction gets
 # the board's answer, an unknown one the UNKINSTR outcome.
 . "$(dirname "$0")/common.inc"
 
-CTLBIN=$LIBBIN/rs485ctl
-rs485_setup "$SIMBIN/rs485-sim" "$CTLBIN"
+CTLBIN=$LIBBIN/advee-rs485ctl
+rs485_setup "$SIMBIN/advee-rs485-sim" "$CTLBIN"
 tap_plan 6
 if ! start_sim "$SUITE/stack.yaml"; then
-	echo "Bail out! rs485-sim did not start"
+	echo "Bail out! advee-rs485-sim did not start"
 	sed 's/^/# /' "$SCR/sim.err"
 	exit 1
 fi

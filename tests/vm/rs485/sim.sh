@@ -1,13 +1,13 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# rs485-sim as a program: configuration errors name line and field, the
+# advee-rs485-sim as a program: configuration errors name line and field, the
 # control socket answers and refuses, SIGTERM stops it cleanly with counters,
 # a missing wire is a clear error. (The protocol itself: drivers.sh.)
 . "$(dirname "$0")/common.inc"
 
-rs485_setup "$SIMBIN/rs485-sim"
+rs485_setup "$SIMBIN/advee-rs485-sim"
 tap_plan 11
-S=$SIMBIN/rs485-sim
+S=$SIMBIN/advee-rs485-sim
 
 tap_ok "--check accepts the suite's configuration" "$S" --check -c "$SUITE/stack.yaml"
 printf 'buses:\n  - name: a\n    wire: /dev/ts7800-sim/uart0\n    devices:\n      - type: sd1\n        address: 0x10\n        srf_cm: [1]\n' >"$SCR/bad.yaml"
@@ -28,7 +28,7 @@ tap_ok "--help documents configuration, control commands and exit status" \
 	bash -c '"$1" --help | grep -q "^CONFIGURATION" && "$1" --help | grep -q "^CONTROL COMMANDS" && "$1" --help | grep -q "^EXIT STATUS"' _ "$S"
 
 if ! start_sim "$SUITE/stack.yaml"; then
-	echo "Bail out! rs485-sim did not start"
+	echo "Bail out! advee-rs485-sim did not start"
 	sed 's/^/# /' "$SCR/sim.err"
 	exit 1
 fi
@@ -44,5 +44,5 @@ tap_ok "an event from a board that sends none is refused" bash -c '! "$1" --cont
 stop_sim; rc=$?
 tap_is "SIGTERM: exit status 0" "$rc" 0
 tap_ok "SIGTERM: counters of every device on stderr, control socket removed" \
-	bash -c 'grep -q "rs485-sim: power:psc1@0x01 requests=0" "$1" && [ ! -e "$2" ]' _ "$SCR/sim.err" "$CTL"
+	bash -c 'grep -q "advee-rs485-sim: power:psc1@0x01 requests=0" "$1" && [ ! -e "$2" ]' _ "$SCR/sim.err" "$CTL"
 tap_finish

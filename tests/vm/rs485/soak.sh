@@ -16,11 +16,11 @@
 seconds=${RS485_SOAK_SECONDS:-$(sed -n 's/.*\brs485_soak_seconds=\([0-9][0-9]*\).*/\1/p' /proc/cmdline)}
 seconds=${seconds:-60}
 
-rs485_setup "$SIMBIN/rs485-sim" "$SIMBIN/rs485-load"
+rs485_setup "$SIMBIN/advee-rs485-sim" "$SIMBIN/rs485-load"
 tap_plan 4
 tap_diag "soak for $seconds s"
 if ! start_sim "$SUITE/soak.yaml"; then
-	echo "Bail out! rs485-sim did not start"
+	echo "Bail out! advee-rs485-sim did not start"
 	sed 's/^/# /' "$SCR/sim.err"
 	exit 1
 fi

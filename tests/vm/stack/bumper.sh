@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-2.0
 # Issue 11: driving into a wall. The planner stand-in keeps commanding
 # 0.8 m/s east from the start pose (2, 2) towards the east wall (x = 10 m);
-# at the front bumper's contact robot-sim raises PAUSE (BR-PSC1 PAUSE event,
+# at the front bumper's contact advee-robot-sim raises PAUSE (BR-PSC1 PAUSE event,
 # drive motor unpowered), driver_power publishes LL_EVENT_STOP, driver_canbus
 # quick-stops the drives (LL_DATA_DRIVES stopped), and the robot stands at
 # the wall (within 10 mm of where it touched; ground truth speed 0 at the
@@ -34,7 +34,7 @@ tap_diag "messages: $(awk '{ print $1 }' "$OUT" | sort | uniq -c | awk '{ printf
 contact=$(grep -m1 '^SIM_DATA_POSE .* pause=1' "$OUT")
 tap_diag "first pose with PAUSE: $contact"
 sources=$(field "$contact" pause_sources)
-tap_ok "robot-sim: the front bumper touched the wall and raised PAUSE (source bit 0)" \
+tap_ok "advee-robot-sim: the front bumper touched the wall and raised PAUSE (source bit 0)" \
 	test -n "$contact" -a "$(( ${sources:-0} & 1 ))" = 1
 stop=$(grep -m1 '^LL_EVENT_STOP .*stop=1' "$OUT")
 tap_diag "$stop"

@@ -5,7 +5,7 @@
 # the periodic ones at their nominal rate (5 or more messages each, counted
 # over the interval they span, +-50 %: tests/lib/lcm.sh rate_check), the
 # aperiodic ones when something triggers them; and the values are
-# those the simulators were set to: ranges and beacon bearings as robot-sim's
+# those the simulators were set to: ranges and beacon bearings as advee-robot-sim's
 # world gives them at the true pose, odometry speed 0 standing and 0.5 m/s
 # driving (its distance against the truth), temperatures and fan speeds of the simulated MAX6615, the PSC1's
 # outputs and currents (conf/boards.yaml), the drives enabled and following.
@@ -100,7 +100,7 @@ tap_diag "$odo"
 tap_ok "LL_DATA_ODO standing: speed 0, yaw rate 0" test "$(field "$odo" speed) $(field "$odo" yaw)" = "0.0000 0.0000"
 temps=$(grep '^LL_DATA_TEMPERATURE ' "$OUT" | tail -1)
 tap_diag "$temps; MAX6615 model (millidegrees): $temp_model"
-tap_ok "LL_DATA_TEMPERATURE: the MAX6615's temperatures as robot-sim set them (+-0.25 C)" \
+tap_ok "LL_DATA_TEMPERATURE: the MAX6615's temperatures as advee-robot-sim set them (+-0.25 C)" \
 	awk -v a="$(field "$temps" temp1)" -v b="$(field "$temps" temp2)" -v m="$temp_model" 'BEGIN {
 		split(m, t, " "); d1 = a - t[1] / 1000; d2 = b - t[2] / 1000
 		exit !(a != "" && b != "" && d1 * d1 <= 0.0625 && d2 * d2 <= 0.0625) }'

@@ -3,7 +3,7 @@
 # The README's main command in its non-interactive form (`make demo FOR=30s`
 # runs tests/harness/demo-guest.sh --for 30s in its own VM; this runs the
 # same guest script inside the suite's VM, no extra boot): it exits 0 and
-# diagnostic_center's text summary shows, every 5 s, every module in RUN,
+# advee-diagnostic-center's text summary shows, every 5 s, every module in RUN,
 # the robot moving along the scripted path (ground truth and odometry
 # estimate, 0.3 m apart at most), and the last summary's ranges, beacons,
 # temperatures and power with the values and relations the simulators give.
@@ -59,7 +59,7 @@ tap_ok "beacons: count=N and N bearings (0..2 pi) of distinct ids among 1..8, at
 		if (kv[1] !~ /^[0-9]+$/) continue
 		if (kv[1] < 1 || kv[1] > 8 || (kv[1] in seen) || kv[2] < 0 || kv[2] >= 6.2832) exit 1; seen[kv[1]] = 1; c++ }
 		exit !(c >= 1 && c == want) }'
-# robot-sim's thermal model (userland/robotsim/conf/robot.yaml): ambient
+# advee-robot-sim's thermal model (userland/robotsim/conf/robot.yaml): ambient
 # 25 C plus at most 35 C (propulsion, temp1) and 15 C (steering, temp2).
 temps=$(grep '^temps ' "$OUT" | tail -1)
 tap_diag "$temps"

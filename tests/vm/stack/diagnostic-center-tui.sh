@@ -1,6 +1,6 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# diagnostic_center's terminal UI driven in tmux (send-keys, capture-pane)
+# advee-diagnostic-center's terminal UI driven in tmux (send-keys, capture-pane)
 # against the whole stack (lib.sh): every module listed in RUN; arrow keys
 # change the motion command, on screen and on LCM (LL_CMD_MOTION repeated
 # while driving manually); a module stopped with SIGSTOP shows up restarted
@@ -44,7 +44,7 @@ wait_all_run() { wait_until "$2" all_run "$1" >/dev/null || all_run "$1"; }
 # row NAME: the module view's row of NAME, without the selection mark:
 # "name state pid age phase restarts exit next".
 row() { screen | sed -n "s/^[> ] \($1 .*\)/\1/p" | head -1; }
-# observe SECONDS: what another LCM client sees, as diagnostic_center's text summary.
+# observe SECONDS: what another LCM client sees, as advee-diagnostic-center's text summary.
 observe() { "$DIAGNOSTIC_CENTER" --text --for "$1" --period 0.5s; }
 cleanup_tui() {
 	tmux_ kill-server 2>/dev/null
@@ -84,7 +84,7 @@ kill "$OBS" "$PRB" 2>/dev/null
 wait "$OBS" "$PRB" 2>/dev/null
 tap_diag "the summary view while driving:"
 screen | sed 's/^/#| /'
-tap_ok "another LCM client sees LL_CMD_MOTION 0.2 m/s, 0.087 rad from diagnostic_center" \
+tap_ok "another LCM client sees LL_CMD_MOTION 0.2 m/s, 0.087 rad from diagnostic_center (its LCM name)" \
 	grep -q 'cmd_v=0.200 cmd_steer=0.087 .*cmd_from=diagnostic_center' "$STACK_RUN/obs-drive.txt"
 times=$(sed -n 's/^LL_CMD_MOTION t=\([0-9.]*\) .* speed=0\.2000 .*/\1/p' "$STACK_RUN/probe-motion.txt")
 n=$(printf '%s\n' "$times" | grep -c .)
@@ -186,7 +186,7 @@ wait_lcm_listening "$OBS" 20 || tap_diag "the observer did not subscribe"
 wait_line "$STACK_RUN/obs-quit.txt" '^motion cmd_v=0.100 ' 10 >/dev/null
 keys q
 wait_until 5 test -s "$DC_EXIT"
-tap_is "q: diagnostic_center exits 0" "$(cat "$DC_EXIT" 2>/dev/null)" 0
+tap_is "q: advee-diagnostic-center exits 0" "$(cat "$DC_EXIT" 2>/dev/null)" 0
 # Two more summaries (0.5 s apart) after the exit: the last command is in.
 wait_lines "$STACK_RUN/obs-quit.txt" '^motion ' $(($(grep -c '^motion ' "$STACK_RUN/obs-quit.txt") + 2)) 10 >/dev/null
 kill "$OBS" 2>/dev/null

@@ -4,11 +4,11 @@
 # other suites that need the stack up). docs/demo.md draws what runs where.
 #
 #   stack_up            kernel modules (simulated TS-7800 FPGA + TS-UART + DIO,
-#                       n_rs485, DIO I2C adapter + MAX6615, vcan0), rs485-sim
-#                       with the robot's boards, robot-sim, advee-watchdog with
+#                       n_rs485, DIO I2C adapter + MAX6615, vcan0), advee-rs485-sim
+#                       with the robot's boards, advee-robot-sim, advee-watchdog with
 #                       every driver daemon; returns once all modules are in RUN
 #   stack_drive FILE    the planner stand-in: advee-drive-script plays FILE
-#                       (a robot-sim path file) onto LL_CMD_MOTION at 10 Hz
+#                       (a advee-robot-sim path file) onto LL_CMD_MOTION at 10 Hz
 #   stack_down          stops everything stack_up and stack_drive started and
 #                       unloads the modules (also on EXIT: stack_up sets a trap)
 #   stack_missing       the pieces of the stack not built yet (one per line)
@@ -18,7 +18,7 @@
 #
 # Variables after stack_up: STACK_RUN (scratch dir: conf/, logs, sockets),
 # STACK_MODULES (names the supervisor runs), STACK_ROBOT_DRIVES (can: the
-# robot moves as the simulated drives on vcan0 turn; path: robot-sim plays
+# robot moves as the simulated drives on vcan0 turn; path: advee-robot-sim plays
 # the path itself because its CAN drives are not there yet).
 # STACK_DEBUG=1 prints what is started on stderr.
 
@@ -28,8 +28,8 @@
 STACK_UL=$VMTEST_BUILD/userland
 STACK_CONF_SRC=$VMTEST_REPO/tests/vm/stack/conf
 STACK_USERLAND_SRC=$VMTEST_REPO/userland
-RS485_SIM=$STACK_UL/rs485sim/rs485-sim
-ROBOT_SIM=$STACK_UL/robotsim/robot-sim
+RS485_SIM=$STACK_UL/rs485sim/advee-rs485-sim
+ROBOT_SIM=$STACK_UL/robotsim/advee-robot-sim
 WATCHDOG=$STACK_UL/watchdog/advee-watchdog
 DRIVER_AUX=$STACK_UL/daemons/driver_aux/driver_aux
 DRIVER_RS485=$STACK_UL/daemons/driver_rs485/driver_rs485
@@ -39,7 +39,7 @@ LCMCTL=$STACK_UL/module/advee-lcmctl
 PROBE=$STACK_UL/daemons/driver_rs485/advee-daemons-probe
 DRIVE_SCRIPT=$STACK_UL/demo/advee-drive-script
 STACK_LISTEN=$STACK_UL/demo/advee-stack-listen
-DIAGNOSTIC_CENTER=$STACK_UL/diagcenter/diagnostic_center
+DIAGNOSTIC_CENTER=$STACK_UL/diagcenter/advee-diagnostic-center
 # STACK_ROBOTSIM_CONF: another directory with room.yaml and robot.yaml.
 ROBOTSIM_CONF=${STACK_ROBOTSIM_CONF:-$STACK_USERLAND_SRC/robotsim/conf}
 SIMFS=/sys/kernel/debug/ts7800-sim
@@ -81,9 +81,9 @@ stack_has() {
 # stack_missing: one line per missing piece, naming it.
 stack_missing() {
 	stack_has canbus || echo "driver_canbus ($DRIVER_CANBUS not built)"
-	stack_has robot-can || echo "robot-sim --can (simulated EPOS/IclA on vcan0)"
-	stack_has sim-pose || echo "robot-sim --lcm (SIM_DATA_POSE, the ground-truth pose on LCM)"
-	stack_has diagnostic-center || echo "diagnostic_center ($DIAGNOSTIC_CENTER not built)"
+	stack_has robot-can || echo "advee-robot-sim --can (simulated EPOS/IclA on vcan0)"
+	stack_has sim-pose || echo "advee-robot-sim --lcm (SIM_DATA_POSE, the ground-truth pose on LCM)"
+	stack_has diagnostic-center || echo "advee-diagnostic-center ($DIAGNOSTIC_CENTER not built)"
 	return 0
 }
 
@@ -102,9 +102,9 @@ stack_require() {
 stack_piece_name() {
 	case $1 in
 	canbus) echo driver_canbus ;;
-	robot-can) echo "robot-sim --can" ;;
-	sim-pose) echo "robot-sim --lcm" ;;
-	diagnostic-center) echo diagnostic_center ;;
+	robot-can) echo "advee-robot-sim --can" ;;
+	sim-pose) echo "advee-robot-sim --lcm" ;;
+	diagnostic-center) echo advee-diagnostic-center ;;
 	esac
 }
 
@@ -158,7 +158,7 @@ stack_kernel_up() {
 stack_conf() {
 	local c=$STACK_RUN/conf d=$STACK_USERLAND_SRC/daemons
 	mkdir -p "$c"
-	# Under TCG a round trip through rs485-sim takes tens of ms (the boards
+	# Under TCG a round trip through advee-rs485-sim takes tens of ms (the boards
 	# answer in 0.2-2 ms on the robot): 100 ms as in tests/vm/rs485.
 	sed -e 's|device: a,|device: /dev/ttyTSU0,|' -e 's|timeout_ms: 20|timeout_ms: 100|' \
 		"$d/driver_rs485/conf/driver_rs485a.yaml" >"$c/driver_rs485a.yaml"
@@ -209,8 +209,8 @@ EOC
 	cp "$STACK_CONF_SRC/boards.yaml" "$c/boards.yaml"
 }
 
-# stack_robot_up [ROBOT-SIM ARGS...]: robot-sim in real time, publishing to
-# rs485-sim and the MAX6615 model; the simulated drives on vcan0 when robot-sim
+# stack_robot_up [ROBOT-SIM ARGS...]: advee-robot-sim in real time, publishing to
+# advee-rs485-sim and the MAX6615 model; the simulated drives on vcan0 when advee-robot-sim
 # has them, else (until then) the scripted path STACK_FALLBACK_PATH.
 stack_robot_up() {
 	local args=(--map "$ROBOTSIM_CONF/room.yaml" --robot "$ROBOTSIM_CONF/robot.yaml"
@@ -228,12 +228,12 @@ stack_robot_up() {
 	# With its CAN drives it says when they are on the bus; the path
 	# fallback has no such line (the checks after stack_wait_run see it).
 	if [ "$STACK_ROBOT_DRIVES" = can ] && ! wait_line "$STACK_RUN/robot-sim.log" '^drives on vcan0' 20 >/dev/null; then
-		echo "stack: robot-sim did not put its drives on vcan0:" >&2
+		echo "stack: advee-robot-sim did not put its drives on vcan0:" >&2
 		tail -5 "$STACK_RUN/robot-sim.log" >&2
 		return 1
 	fi
 	kill -0 "$STACK_ROBOT_SIM_PID" 2>/dev/null ||
-		{ echo "stack: robot-sim exited:" >&2; tail -5 "$STACK_RUN/robot-sim.log" >&2; return 1; }
+		{ echo "stack: advee-robot-sim exited:" >&2; tail -5 "$STACK_RUN/robot-sim.log" >&2; return 1; }
 }
 
 # stack_wait_run SECONDS [MODULE...]: every module (default STACK_MODULES)
@@ -269,8 +269,8 @@ stack_up() {
 
 	stack_bg rs485-sim "$RS485_SIM" -c "$STACK_RUN/conf/boards.yaml" --control "$STACK_RUN/rs485-sim.sock"
 	STACK_RS485_SIM_PID=$STACK_LAST_PID
-	wait_line "$STACK_RUN/rs485-sim.log" '^rs485-sim: ready' 20 >/dev/null ||
-		{ echo "stack: rs485-sim did not start:" >&2; tail -5 "$STACK_RUN/rs485-sim.log" >&2; return 1; }
+	wait_line "$STACK_RUN/rs485-sim.log" '^advee-rs485-sim: ready' 20 >/dev/null ||
+		{ echo "stack: advee-rs485-sim did not start:" >&2; tail -5 "$STACK_RUN/rs485-sim.log" >&2; return 1; }
 
 	stack_robot_up "$@" || return 1
 
@@ -294,7 +294,7 @@ stack_drive() {
 }
 
 # stack_world_at X Y HEADING_RAD: what the robot's sensors see standing at
-# that pose in the same world (robot-sim's own model, --print block of one
+# that pose in the same world (advee-robot-sim's own model, --print block of one
 # simulated second: srf_m, ir_m, beacons lines), for comparing with what
 # came through the simulators, the kernel and the daemons.
 stack_world_at() {
@@ -356,7 +356,7 @@ stack_path_points() {
 	tap_ok "odometry heading within $STACK_HEAD_TOL_DEG degrees of the truth ($herr)" awk -v e="$herr" -v t="$STACK_HEAD_TOL_DEG" 'BEGIN { exit !(e <= t) }'
 }
 
-# stack_sim COMMAND...: one rs485-sim control command, its reply on stdout.
+# stack_sim COMMAND...: one advee-rs485-sim control command, its reply on stdout.
 stack_sim() { "$RS485_SIM" --control "$STACK_RUN/rs485-sim.sock" --send "$*"; }
 
 # stack_logs [LINES]: the tail of every log, as TAP diagnostics.

@@ -2,13 +2,13 @@
 # SPDX-License-Identifier: GPL-2.0
 # Issue 11: the robot drives the demo's scripted path through the whole
 # stack - advee-drive-script publishes LL_CMD_MOTION at 10 Hz, driver_canbus
-# commands the simulated EPOS and IclA on vcan0, robot-sim moves as they turn
+# commands the simulated EPOS and IclA on vcan0, advee-robot-sim moves as they turn
 # and feeds the simulated boards, driver_rs485 reads them through n_rs485 on
 # the simulated TS-UARTs. After the path (14 m around the box of room.yaml):
 # the odometry position estimate (LL_DATA_ODO integrated from the start pose)
-# stays within 0.1 m and 1 degree of robot-sim's ground truth
+# stays within 0.1 m and 1 degree of advee-robot-sim's ground truth
 # (SIM_DATA_POSE); the ranges and beacon bearings the daemons publish match
-# what robot-sim's world model gives for the true end pose.
+# what advee-robot-sim's world model gives for the true end pose.
 . "$(dirname "$0")/lib.sh"
 stack_require canbus robot-can sim-pose
 
@@ -49,7 +49,7 @@ grep '^LL_DATA_DRIVES .*stopped=1' "$OUT" | head -3 | sed 's/^/# /'
 
 stack_path_points "$OUT"
 
-# What the world looks like from the true end pose, by robot-sim's model.
+# What the world looks like from the true end pose, by advee-robot-sim's model.
 world=$(stack_world_at "$x1" "$y1" "$h1")
 printf '%s\n' "$world" | sed 's/^/# model at the end pose: /'
 srfs=$(grep '^LL_DATA_SRFS ' "$OUT" | tail -1)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl as a process: every usage error is found before the CAN socket
+// advee-canopenctl as a process: every usage error is found before the CAN socket
 // is opened (the interface here does not exist, so an I/O attempt ends with
 // exit 1 and the socket's error: "socket(PF_CAN)" without CAN support,
 // "if_nametoindex nosuchcan0" with it; a usage error is exit 2).
@@ -54,8 +54,8 @@ TEST(CanopenctlCliTest, UsageErrorsExit2BeforeAnyIo) {
                            "-i nosuchcan0 lss set-id 5 --identity 1:2:3", "-i nosuchcan0 lss --answer-ms 0 identify",
                            "-i nosuchcan0 lss --settle-ms 100 identify", "-i nosuchcan0 lss bogus"}) {
     const Outcome r = canopenctl(args);
-    EXPECT_EQ(r.status, 2) << "canopenctl " << args << ":\n" << r.out;
-    EXPECT_FALSE(tried_io(r.out)) << "canopenctl " << args << " opened the socket:\n" << r.out;
+    EXPECT_EQ(r.status, 2) << "advee-canopenctl " << args << ":\n" << r.out;
+    EXPECT_FALSE(tried_io(r.out)) << "advee-canopenctl " << args << " opened the socket:\n" << r.out;
   }
 }
 
@@ -66,8 +66,8 @@ TEST(CanopenctlCliTest, ValidArgumentsReachTheSocket) {
                            "-i nosuchcan0 pdo 1", "-i nosuchcan0 lss scan --assign 10 --store",
                            "-i nosuchcan0 lss set-id 5 --identity FB:64200000:10000:1", "-i nosuchcan0 lss identify"}) {
     const Outcome r = canopenctl(args);
-    EXPECT_EQ(r.status, 1) << "canopenctl " << args << ":\n" << r.out;
-    EXPECT_TRUE(tried_io(r.out)) << "canopenctl " << args << ":\n" << r.out;
+    EXPECT_EQ(r.status, 1) << "advee-canopenctl " << args << ":\n" << r.out;
+    EXPECT_TRUE(tried_io(r.out)) << "advee-canopenctl " << args << ":\n" << r.out;
   }
 }
 
@@ -103,9 +103,9 @@ TEST(CanopenctlCliTest, DcfChecksItsFileBeforeAnyIoAndConciseNeedsNoBus) {
   };
   for (const Case& c : cases) {
     const Outcome r = canopenctl("-i nosuchcan0 " + c.args);
-    EXPECT_EQ(r.status, c.status) << "canopenctl " << c.args << ":\n" << r.out;
-    EXPECT_FALSE(tried_io(r.out)) << "canopenctl " << c.args << " opened the socket:\n" << r.out;
-    EXPECT_NE(r.out.find(c.says), std::string::npos) << "canopenctl " << c.args << ":\n" << r.out;
+    EXPECT_EQ(r.status, c.status) << "advee-canopenctl " << c.args << ":\n" << r.out;
+    EXPECT_FALSE(tried_io(r.out)) << "advee-canopenctl " << c.args << " opened the socket:\n" << r.out;
+    EXPECT_NE(r.out.find(c.says), std::string::npos) << "advee-canopenctl " << c.args << ":\n" << r.out;
   }
   for (const std::string& file : {eds, cdcf}) {
     const Outcome r = canopenctl("-i nosuchcan0 dcf download --no-start 1 " + file);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl dcf's checks with no I/O: the node evaluates $NODEID, the
+// advee-canopenctl dcf's checks with no I/O: the node evaluates $NODEID, the
 // DCF's NodeName names the node, the identity to check comes from the file,
 // a concise DCF is told from text and carries no identity.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl lss: argument checks and output text, no I/O.
+// advee-canopenctl lss: argument checks and output text, no I/O.
 #include <gtest/gtest.h>
 
 #include "canopenctl_lss.hpp"

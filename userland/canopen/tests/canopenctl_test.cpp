@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl's argument checks and the monitor's frame descriptions (no I/O).
+// advee-canopenctl's argument checks and the monitor's frame descriptions (no I/O).
 #include "canopenctl_text.hpp"
 
 #include <gtest/gtest.h>

@@ -125,7 +125,7 @@ TEST(PeriodicTest, MasterWithoutHeartbeatStaysSilent) {
   Recorder r;
   Master m(MasterConfig{0x7F, 100ms, {}}, r.sender(), r.clock.fn());
   r.run([&] { m.poll(); }, 1s, 0ms, 0ms);
-  EXPECT_TRUE(r.frames.empty()) << "a tool (canopenctl) is no node on the network";
+  EXPECT_TRUE(r.frames.empty()) << "a tool (advee-canopenctl) is no node on the network";
 }
 
 }  // namespace

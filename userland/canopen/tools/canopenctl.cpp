@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl: command-line CANopen master tool on SocketCAN. NMT commands,
+// advee-canopenctl: command-line CANopen master tool on SocketCAN. NMT commands,
 // typed SDO read/write (block transfer too), a scan of the nodes that answer
 // with their identity, LSS (CiA 305: fastscan, node-ID by identity), a node
 // configured from its DCF or concise DCF (CiA 302-2 boot), PDO
@@ -204,9 +204,9 @@ void scan(Master& master, std::pair<std::uint8_t, std::uint8_t> nodes,
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"canopenctl: a CANopen master tool on SocketCAN (docs/canopen.md).\n"
+  CLI::App app{"advee-canopenctl: a CANopen master tool on SocketCAN (docs/canopen.md).\n"
                "Exit status 0, 1 on a CANopen or I/O error, 2 on a usage error.",
-               "canopenctl"};
+               "advee-canopenctl"};
   Args a;
   describe(app, a);
   ADVEE_CLI_PARSE(app, argc, argv);
@@ -219,7 +219,7 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     return advee::cli::usage_error(app, e.what());
   } catch (const FileError& e) {
-    std::fprintf(stderr, "canopenctl: %s\n", e.what());
+    std::fprintf(stderr, "advee-canopenctl: %s\n", e.what());
     return advee::cli::kExitFailure;
   }
   const Command& c = command;
@@ -234,7 +234,7 @@ int main(int argc, char** argv) {
     MasterRuntime rt(loop, a.ifname, mc);
     Master& master = rt.master();
     auto fail = [&](const std::string& what, std::error_code ec) {
-      std::fprintf(stderr, "canopenctl: %s: %s\n", what.c_str(), ec.message().c_str());
+      std::fprintf(stderr, "advee-canopenctl: %s: %s\n", what.c_str(), ec.message().c_str());
       rc = 1;
       loop.stop();
     };
@@ -282,7 +282,7 @@ int main(int argc, char** argv) {
     } else if (cmd == "scan") {
       scan(master, c.nodes, [&](std::map<std::uint8_t, Identity> found) {
         for (const auto& [n, id] : found) std::printf("%s\n", describe_identity(n, id).c_str());
-        if (found.empty()) std::fprintf(stderr, "canopenctl: scan: no node answered\n"), rc = 1;
+        if (found.empty()) std::fprintf(stderr, "advee-canopenctl: scan: no node answered\n"), rc = 1;
         loop.stop();
       });
     } else if (cmd == "pdo") {
@@ -307,7 +307,7 @@ int main(int argc, char** argv) {
           if (ec) return fail("pdo remap: read-back", ec);
           std::printf("%s\n", to_string(m).c_str());
           if (to_string(m) != to_string(c.pdo))
-            std::fprintf(stderr, "canopenctl: pdo remap: the device reports another mapping than %s\n",
+            std::fprintf(stderr, "advee-canopenctl: pdo remap: the device reports another mapping than %s\n",
                          to_string(c.pdo).c_str()), rc = 1;
           loop.stop();
         });
@@ -370,7 +370,7 @@ int main(int argc, char** argv) {
     }
     loop.run();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "canopenctl: %s\n", e.what());
+    std::fprintf(stderr, "advee-canopenctl: %s\n", e.what());
     return advee::cli::kExitFailure;
   }
   return rc;

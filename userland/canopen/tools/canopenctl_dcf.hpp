@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl dcf: `dcf download NODE FILE` configures a node from its DCF
+// advee-canopenctl dcf: `dcf download NODE FILE` configures a node from its DCF
 // (or EDS, or concise DCF) the way a manager boots it (NodeBoot, CiA 302-2:
 // identity checked first, then the downloads, then NMT start); `dcf concise
 // NODE FILE OUT` writes the concise DCF of a DCF's configuration, with no bus.

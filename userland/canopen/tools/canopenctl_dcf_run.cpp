@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl dcf: the CLI11 description and the runs.
+// advee-canopenctl dcf: the CLI11 description and the runs.
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
@@ -40,7 +40,7 @@ int write_concise(const DcfCommand& c) {
   if (out) out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (out) out.close();
   if (!out) {
-    std::fprintf(stderr, "canopenctl: dcf concise: %s: %s\n", c.out.c_str(), std::strerror(errno));
+    std::fprintf(stderr, "advee-canopenctl: dcf concise: %s: %s\n", c.out.c_str(), std::strerror(errno));
     return cli::kExitFailure;
   }
   std::printf("%s: %zu objects, %zu bytes\n", c.out.c_str(), c.boot.configuration.size(), bytes.size());
@@ -52,7 +52,7 @@ std::unique_ptr<NodeBoot> run_dcf_download(Master& master, const DcfCommand& c, 
   const NodeBoot* b = boot.get();
   boot->boot([&c, b, end = std::move(end)](std::error_code ec, const std::string& error) {
     if (ec) {
-      std::fprintf(stderr, "canopenctl: dcf download: %s\n", error.c_str());
+      std::fprintf(stderr, "advee-canopenctl: dcf download: %s\n", error.c_str());
       return end(cli::kExitFailure);
     }
     std::printf("%s\n", describe_download(c, b->retries()).c_str());

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl lss: the arguments of `lss scan`, `lss set-id` and `lss
+// advee-canopenctl lss: the arguments of `lss scan`, `lss set-id` and `lss
 // identify`, checked with no I/O (canopenctl_lss.cpp, unit-tested), and the
 // command run on a master (canopenctl_lss_run.cpp, part of the tool).
 #pragma once

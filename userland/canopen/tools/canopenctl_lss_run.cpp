@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl lss: the CLI11 description and the run on a master.
+// advee-canopenctl lss: the CLI11 description and the run on a master.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -49,7 +49,7 @@ struct SetId : std::enable_shared_from_this<SetId> {
   SetId(LssMaster& l, LssCommand cmd, std::function<void(int)> e) : lss(l), c(std::move(cmd)), end(std::move(e)) {}
 
   void fail(const std::string& what, const LssResult& r) {
-    std::fprintf(stderr, "canopenctl: lss set-id: %s: %s\n", what.c_str(), describe(r).c_str());
+    std::fprintf(stderr, "advee-canopenctl: lss set-id: %s: %s\n", what.c_str(), describe(r).c_str());
     lss.switch_global(LssMode::kWaiting, [self = shared_from_this()](const LssResult&) { self->end(1); });
   }
   void start() {
@@ -105,11 +105,11 @@ std::unique_ptr<LssMaster> run_lss(Master& master, const LssCommand& c, std::fun
     lss_scan(*lss, c.assign, c.store, [end](const std::vector<LssFound>& found, const LssResult& r) {
       for (const auto& f : found) std::printf("%s\n", describe_found(f).c_str());
       if (!r.ok()) {
-        std::fprintf(stderr, "canopenctl: lss scan: %s\n", describe(r).c_str());
+        std::fprintf(stderr, "advee-canopenctl: lss scan: %s\n", describe(r).c_str());
         return end(1);
       }
       if (found.empty()) {
-        std::fprintf(stderr, "canopenctl: lss scan: no node without node-ID answered\n");
+        std::fprintf(stderr, "advee-canopenctl: lss scan: no node without node-ID answered\n");
         return end(1);
       }
       end(0);

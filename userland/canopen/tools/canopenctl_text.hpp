@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopenctl's arguments and output as text, with no I/O: node-IDs, objects,
+// advee-canopenctl's arguments and output as text, with no I/O: node-IDs, objects,
 // SDO types and values (range-checked), and the monitor's one-line frame
 // description. Unit-tested (canopenctl_test.cpp); the tool checks every
 // argument with these before it opens the CAN socket.
@@ -18,7 +18,7 @@
 
 namespace advee::canopen::ctl {
 
-// A usage error: canopenctl prints it and exits 2.
+// A usage error: advee-canopenctl prints it and exits 2.
 struct UsageError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };

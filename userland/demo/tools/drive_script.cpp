@@ -2,7 +2,7 @@
 // advee-drive-script: the planner stand-in of the demo. Plays a scripted
 // path (speed/steering/duration segments, robotsim's path file format) onto
 // LL_CMD_MOTION at a fixed rate, as the middle level would, so that the robot
-// moves through driver_canbus -> drives -> robot-sim. It also tells the
+// moves through driver_canbus -> drives -> advee-robot-sim. It also tells the
 // beacon scanner which beacons to look for (LL_DATA_ACTIVE_BEACONS) and can
 // ask for the steering homing first (LL_CMD_HOMING).
 #include <lcm/lcm-cpp.hpp>
@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "advee-drive-script: the planner stand-in of the demo. Plays a scripted path onto LL_CMD_MOTION "
       "(lowlevel.cmd_motion_t) at a fixed rate, as the middle level would: driver_canbus turns the commands "
-      "into EPOS velocity and IclA steering, and the virtual robot (robot-sim) moves as its simulated drives "
+      "into EPOS velocity and IclA steering, and the virtual robot (advee-robot-sim) moves as its simulated drives "
       "turn. After the path it sends standstill commands for --hold seconds (or until SIGINT/SIGTERM with "
       "--stay); SIGINT/SIGTERM send one standstill command and end it at once. The LCM URL comes from "
       "LCM_DEFAULT_URL, else /etc/advee/lcm.conf (docs/modules.md).\n\n"

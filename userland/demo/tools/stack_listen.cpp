@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
       "advee-stack-listen: prints every message of the low level's LCM channels for a while, one decoded line "
       "each: `CHANNEL t=MONOTONIC_SECONDS module=SENDER key=value ...` (the whole-stack VM tests count and "
       "compare them). Without CHANNEL arguments: every channel of advee/msgs/channels.hpp and SIM_DATA_POSE "
-      "(robot-sim's ground truth). The LCM URL comes from LCM_DEFAULT_URL, else /etc/advee/lcm.conf.\n\n"
+      "(advee-robot-sim's ground truth). The LCM URL comes from LCM_DEFAULT_URL, else /etc/advee/lcm.conf.\n\n"
       "Exit status: 0, 1 when LCM does not start, 2 on bad arguments.",
       "advee-stack-listen"};
   app.add_option("-s,--seconds", seconds, "how long to listen")->check(CLI::Range(0.1, 86400.0))->capture_default_str();

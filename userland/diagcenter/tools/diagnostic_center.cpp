@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// diagnostic_center: the console diagnostic centre of the Advee low level
+// advee-diagnostic-center: the console diagnostic centre of the Advee low level
 // (thesis 3.7). Interactive ncurses views, or --text: a plain-text summary
 // every --period for --for seconds. docs/diagnostic-center.md.
 #include <poll.h>
@@ -29,7 +29,11 @@ using namespace advee::diagcenter;
 
 namespace {
 
-constexpr const char* kName = "diagnostic_center";
+// The program's name (messages, --help, --version) follows the installed
+// names (docs/command-line.md "Names"); on LCM it stays the thesis's module
+// name: commands carry it as their sender, and the other tools know it.
+constexpr const char* kName = "advee-diagnostic-center";
+constexpr const char* kLcmName = "diagnostic_center";
 
 double mono_now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -100,7 +104,7 @@ int run_tui(lcm::LCM& lcm, Model& model, const DriveLimits& limits, const std::s
     std::cerr << kName << ": the interactive view needs a terminal; use --text --for DURATION\n";
     return advee::cli::kExitUsage;
   }
-  LcmCommandSink sink(lcm, kName);
+  LcmCommandSink sink(lcm, kLcmName);
   Controller ctl(model, sink, limits);
   install_quit_handlers();
   tui::Screen screen;
@@ -134,7 +138,7 @@ int run_tui(lcm::LCM& lcm, Model& model, const DriveLimits& limits, const std::s
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "diagnostic_center: the console diagnostic centre of the Advee robot's low level.\n"
+      "advee-diagnostic-center: the console diagnostic centre of the Advee robot's low level.\n"
       "Shows every LCM channel of the modules (states and restarts, errors, odometry position\n"
       "estimate, motion command and drives, ranges around the robot, beacons, temperatures,\n"
       "fans, power outputs, PAUSE) and sends operator commands: module states, power outputs,\n"
@@ -174,7 +178,7 @@ int main(int argc, char** argv) {
       "  q        quit (a manual drive is stopped first; so are SIGINT and SIGTERM).\n"
       "  Data older than three periods of its channel is dimmed and marked (Ns old).\n\n"
       "TEXT MODE\n"
-      "  diagnostic_center --text --for 30s [--period 1s] prints one block per period:\n"
+      "  advee-diagnostic-center --text --for 30s [--period 1s] prints one block per period:\n"
       "  lines 'summary', 'pose_odo', 'pose_true', 'odo', 'motion', 'drives', 'modules',\n"
       "  'module_pids', 'module_restarts', 'module_phases', 'module_ages', 'srf', 'ir',\n"
       "  'beacons', 'temps', 'fans', 'power', 'stop', 'errors', each 'topic key=value ...';\n"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// ncurses drawing of diagnostic_center. Layout for 80x24 and larger: title
+// ncurses drawing of advee-diagnostic-center. Layout for 80x24 and larger: title
 // line, content, status line, help line. Everything is clipped to the
 // terminal, so a smaller one shows less but never garbage; KEY_RESIZE
 // redraws at the new size.

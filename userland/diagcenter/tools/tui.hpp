@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// The ncurses side of diagnostic_center: the terminal (RAII), key
+// The ncurses side of advee-diagnostic-center: the terminal (RAII), key
 // translation and drawing the controller's current view of the model.
 #pragma once
 

@@ -114,7 +114,7 @@ std::string describe(const lcm::ReceiveBuffer& rb, const std::string& ch) {
         << m.error_code[i] << " homed" << n << "=" << int(m.homed[i]);
     }
   } else if (sim::data_pose_t m; ch == kSimDataPose && decode(rb, m)) {
-    o << " module=robot-sim sim_t=" << num(m.sim_time_s, "%.2f") << " x=" << num(m.x_m) << " y=" << num(m.y_m)
+    o << " module=advee-robot-sim sim_t=" << num(m.sim_time_s, "%.2f") << " x=" << num(m.x_m) << " y=" << num(m.y_m)
       << " heading=" << num(m.heading_rad) << " speed=" << num(m.speed_mps) << " steering=" << num(m.steering_rad)
       << " pause_sources=" << int(m.pause_sources) << " pause=" << int(m.pause_engaged)
       << " ticks_left=" << m.ticks_left << " ticks_right=" << m.ticks_right;

@@ -1,6 +1,6 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
-# robot-sim publishing to a real rs485-sim through its control socket: after
+# advee-robot-sim publishing to a real advee-rs485-sim through its control socket: after
 # 20 simulated seconds of the example path, the simulated boards hold the
 # virtual robot's last frame (ticks, ranges, beacons). The boards' wires are
 # /dev/null: no bus traffic, only the control path is under test.
@@ -24,7 +24,7 @@ EOT
 "$rs485_sim" -c "$dir/sim.yaml" > "$dir/sim.log" 2>&1 &
 sim_pid=$!
 for _ in $(seq 50); do [ -S "$dir/ctl.sock" ] && break; sleep 0.1; done
-[ -S "$dir/ctl.sock" ] || fail "rs485-sim did not start: $(cat "$dir/sim.log")"
+[ -S "$dir/ctl.sock" ] || fail "advee-rs485-sim did not start: $(cat "$dir/sim.log")"
 
 "$robot_sim" -m "$conf/room.yaml" -r "$conf/robot.yaml" -p "$conf/square-path.yaml" \
   --rs485-control "$dir/ctl.sock" --fast --duration 20 --print > "$dir/print.log"
@@ -39,12 +39,12 @@ ticks=$(sed -n 's/.* ticks=\([0-9-]*\),\([0-9-]*\)$/\1 \2/p' <<< "$last")
 so1=$(show a:so1@0x20)
 read -ra w <<< "$so1"
 [ "${w[0]} ${w[1]}" = "ok ticks" ] && [ "${w[4]}" = rate ] || fail "so1 show line not 'ok ticks L R rate ...': $so1"
-[ "${w[2]} ${w[3]}" = "$ticks" ] || fail "so1 holds ticks '${w[2]} ${w[3]}', robot-sim printed '$ticks'"
+[ "${w[2]} ${w[3]}" = "$ticks" ] || fail "so1 holds ticks '${w[2]} ${w[3]}', advee-robot-sim printed '$ticks'"
 left=${ticks% *}
 [ "$left" -gt 20000 ] || fail "only $left ticks after 20 s of driving"
 
 # robot.yaml: SRF 0..7 on the front SD1 (0x10), 8..15 on the rear one (0x11);
-# robot-sim prints metres with 2 decimals or "-" (no echo), a board holds
+# advee-robot-sim prints metres with 2 decimals or "-" (no echo), a board holds
 # centimetres or "none".
 srf=$(sed -n '/^t=20.0 /{n;p}' "$dir/print.log")
 read -ra m <<< "$srf"
@@ -61,7 +61,7 @@ check_sd1() {	# check_sd1 DEVICE FIRST: its 8 srf_cm fields against m[FIRST..FIR
 		[ "${m[$((first + i))]}" = - ] ||
 			want=$(awk -v v="${m[$((first + i))]}" 'BEGIN { printf "%d", v * 100 + (v < 0 ? -0.5 : 0.5) }')
 		[ "${w[$((i + 2))]}" = "$want" ] ||
-			fail "$dev SRF $i holds '${w[$((i + 2))]}', robot-sim printed ${m[$((first + i))]} m: $line"
+			fail "$dev SRF $i holds '${w[$((i + 2))]}', advee-robot-sim printed ${m[$((first + i))]} m: $line"
 	done
 	echo "$line"
 }
@@ -71,14 +71,14 @@ seen=0
 for v in "${m[@]}"; do [ "$v" = - ] || seen=$((seen + 1)); done
 [ "$seen" -gt 0 ] || fail "no SRF saw anything: $srf"
 
-# Beacons: robot-sim prints "ID@DEG.DDdeg(qQ)", the SBS1 holds "ID:DEG/Q"
+# Beacons: advee-robot-sim prints "ID@DEG.DDdeg(qQ)", the SBS1 holds "ID:DEG/Q"
 # (DEG as %g). The visible sets are equal.
 beacons=$(sed -n '/^t=20.0 /,/^  beacons/{s/^  beacons//p}' "$dir/print.log")
 want=$(tr ' ' '\n' <<< "$beacons" | sed -n 's/^\([0-9]*\)@\([-0-9.]*\)deg(q\([0-9]*\))$/\1 \2 \3/p' |
 	awk '{ printf "%d:%g/%d\n", $1, $2, $3 }' | sort)
-[ -n "$want" ] || fail "robot-sim saw no beacon at t=20.0: '$beacons'"
+[ -n "$want" ] || fail "advee-robot-sim saw no beacon at t=20.0: '$beacons'"
 sbs1=$(show b:sbs1@0x30)
 [[ "$sbs1" == "ok ids"*" visible "* ]] || fail "sbs1 show line not 'ok ids ... visible ...': $sbs1"
 got=$(tr ' ' '\n' <<< "${sbs1#* visible }" | sort)
-[ "$got" = "$want" ] || fail "SBS1 holds '$(echo $got)', robot-sim saw '$(echo $want)'"
+[ "$got" = "$want" ] || fail "SBS1 holds '$(echo $got)', advee-robot-sim saw '$(echo $want)'"
 echo "ok: so1 '$so1'; sd1 '$front' / '$rear'; sbs1 '$sbs1'"

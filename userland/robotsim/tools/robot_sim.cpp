@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
-// robot-sim: the virtual robot. Loads a map and a robot description, drives
+// advee-robot-sim: the virtual robot. Loads a map and a robot description, drives
 // the robot at a fixed rate, either along a scripted path, from a stream of
 // commands, or with its two CANopen drives simulated on a CAN interface
 // (--can), and publishes its sensor values to the device simulators
-// (rs485-sim control socket, MAX6615 debugfs), its true pose on LCM
+// (advee-rs485-sim control socket, MAX6615 debugfs), its true pose on LCM
 // (--lcm), optionally printing pose, ranges and bearings once a second.
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
@@ -91,24 +91,24 @@ void print_frame(const SensorFrame& f, const Pose& odo) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "robot-sim - the virtual Advee robot.\n\n"
+      "advee-robot-sim - the virtual Advee robot.\n\n"
       "Drives an Ackermann robot through a 2D room (map file) and feeds the device\n"
       "simulators with what its sensors would measure: front-wheel encoder ticks (BR-SO1), 16 ultrasonic\n"
       "ranges and 4 IR ground distances (two BR-SD1), beacon bearings (BR-SBS1), bumper PAUSE sources\n"
-      "(BR-SD1 GET_PAUSE_SRC) through the rs485-sim control socket, and the MAX6615 temperatures through\n"
+      "(BR-SD1 GET_PAUSE_SRC) through the advee-rs485-sim control socket, and the MAX6615 temperatures through\n"
       "the kernel simulator's debugfs files. The world advances in fixed steps of 1/--rate seconds of\n"
       "simulated time, in real time unless --fast. The motion comes from a scripted path (--path), a\n"
       "command stream (--drive-input) or the robot's own CANopen drives (--can IF): a simulated EPOS\n"
-      "(propulsion) and IclA (steering) that a CANopen master (driver_canbus, canopenctl) commands.\n"
+      "(propulsion) and IclA (steering) that a CANopen master (driver_canbus, advee-canopenctl) commands.\n"
       "A bumper contact stops the robot and engages the PAUSE line (BR-PSC1 PAUSE event), which cuts\n"
       "the drive motor's power. docs/robotsim.md describes the model and the files.",
-      "robot-sim"};
+      "advee-robot-sim"};
   app.footer(
       "EXAMPLES:\n"
-      "  robot-sim --check                                   load the files, report errors, exit\n"
-      "  robot-sim --print --fast --duration 40              the scripted path without simulators\n"
-      "  robot-sim --rs485-control /run/rs485-sim.sock --max6615 /sys/kernel/debug/ts7800-sim/max6615\n"
-      "  robot-sim --can vcan0 --rs485-control /run/rs485-sim.sock --lcm --print\n\n"
+      "  advee-robot-sim --check                                   load the files, report errors, exit\n"
+      "  advee-robot-sim --print --fast --duration 40              the scripted path without simulators\n"
+      "  advee-robot-sim --rs485-control /run/rs485-sim.sock --max6615 /sys/kernel/debug/ts7800-sim/max6615\n"
+      "  advee-robot-sim --can vcan0 --rs485-control /run/rs485-sim.sock --lcm --print\n\n"
       "EXIT STATUS:\n"
       "  0 done (--duration reached, or SIGINT/SIGTERM)\n"
       "  1 an unusable map, robot or path file (the message names file, line and field), a simulator\n"
@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
       "DRIVES (--can): EPOS node 1 (0x60FF/0x606C in motor rpm), IclA node 2 (0x607A/0x6064 in\n"
       "1/10000 rad of steering, 0 = straight ahead after homing); robot.yaml's drives: section sets\n"
       "nodes, gear, wheel radius, units, home switch and start angle. They behave like\n"
-      "canopen-sim-drive's (NMT, SDO, PDOs, heartbeat, CiA 402). Signals: SIGUSR1 = EMCY 0x4210 + fault\n"
+      "advee-canopen-sim-drive's (NMT, SDO, PDOs, heartbeat, CiA 402). Signals: SIGUSR1 = EMCY 0x4210 + fault\n"
       "on the EPOS, SIGUSR2 = heartbeat silence of both on/off.");
   const std::string etc = ADVEE_ROBOTSIM_SYSCONFDIR "/";
   std::string map_file = etc + "room.yaml", robot_file = etc + "robot.yaml", path_file = etc + "square-path.yaml";
@@ -148,8 +148,8 @@ int main(int argc, char** argv) {
                                             "still once the path ends)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_option("--seed", seed, "random seed of the sensor noise (same seed, same readings)")->capture_default_str();
-  app.add_option("--rs485-control", rs485_control, "rs485-sim control socket to publish to (none: not published)");
-  app.add_option("--sd1-front", devices.sd1_front, "front BR-SD1 as rs485-sim names it ([BUS:]TYPE@ADDRESS)")
+  app.add_option("--rs485-control", rs485_control, "advee-rs485-sim control socket to publish to (none: not published)");
+  app.add_option("--sd1-front", devices.sd1_front, "front BR-SD1 as advee-rs485-sim names it ([BUS:]TYPE@ADDRESS)")
       ->capture_default_str();
   app.add_option("--sd1-rear", devices.sd1_rear, "rear BR-SD1")->capture_default_str();
   app.add_option("--so1", devices.so1, "BR-SO1 odometry board")->capture_default_str();
@@ -176,12 +176,12 @@ int main(int argc, char** argv) {
     desc = load_robot(robot_file);
     if (drive_input.empty() && can_if.empty()) path = load_path(path_file);
   } catch (const ConfigError& e) {
-    std::fprintf(stderr, "robot-sim: %s\n", e.what());
+    std::fprintf(stderr, "advee-robot-sim: %s\n", e.what());
     return 1;
   }
   Robot robot(desc, world, seed);
   if (robot.bumper_contact(robot.pose())) {
-    std::fprintf(stderr, "robot-sim: %s: the start pose touches a wall or obstacle of %s\n", robot_file.c_str(),
+    std::fprintf(stderr, "advee-robot-sim: %s: the start pose touches a wall or obstacle of %s\n", robot_file.c_str(),
                  map_file.c_str());
     return 1;
   }
@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
       drive = std::make_unique<StreamDrive>(open_drive_input(drive_input));
     }
   } catch (const std::system_error& e) {
-    std::fprintf(stderr, "robot-sim: %s\n", e.what());
+    std::fprintf(stderr, "advee-robot-sim: %s\n", e.what());
     return 1;
   }
 #ifdef ADVEE_ROBOTSIM_LCM
@@ -221,7 +221,7 @@ int main(int argc, char** argv) {
     try {
       pose_pub = std::make_unique<PosePublisher>(lcm_url);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "robot-sim: %s\n", e.what());
+      std::fprintf(stderr, "advee-robot-sim: %s\n", e.what());
       return 1;
     }
   }
@@ -283,7 +283,7 @@ int main(int argc, char** argv) {
       }
     }
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "robot-sim: %s\n", e.what());
+    std::fprintf(stderr, "advee-robot-sim: %s\n", e.what());
     return 1;
   }
   return 0;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// robot-sim-pose: prints robot-sim's ground truth (SIM_DATA_POSE) one line
+// advee-robot-sim-pose: prints advee-robot-sim's ground truth (SIM_DATA_POSE) one line
 // per message, for tests and for a look at the virtual robot by hand.
 #include <CLI/CLI.hpp>
 #include <sys/select.h>
@@ -33,10 +33,10 @@ void on_pose(const lcm::ReceiveBuffer*, const std::string&, const sim::data_pose
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"robot-sim-pose - print robot-sim's true pose (LCM channel SIM_DATA_POSE), one line per message:\n"
+  CLI::App app{"advee-robot-sim-pose - print advee-robot-sim's true pose (LCM channel SIM_DATA_POSE), one line per message:\n"
                "simulated time, x, y (m), heading (deg), speed (m/s), steering (deg), PAUSE sources and line,\n"
                "encoder ticks.",
-               "robot-sim-pose"};
+               "advee-robot-sim-pose"};
   std::string url;
   double seconds = 0;
   long count = 0;
@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   try {
     bus = advee::msgs::open_bus(advee::msgs::bus_url(url, "--url"));
   } catch (const advee::msgs::BusUnavailable& e) {
-    std::fprintf(stderr, "robot-sim-pose: %s\n", e.what());
+    std::fprintf(stderr, "advee-robot-sim-pose: %s\n", e.what());
     return 1;
   }
   lcm::LCM& lcm = *bus;

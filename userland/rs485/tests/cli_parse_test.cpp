@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// rs485ctl's argument parsing: bad input is a UsageError naming it, never a crash.
+// advee-rs485ctl's argument parsing: bad input is a UsageError naming it, never a crash.
 #include "../tools/cli_parse.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
-// Parsing of rs485ctl's arguments (numbers, addresses, hex data, durations).
+// Parsing of advee-rs485ctl's arguments (numbers, addresses, hex data, durations).
 // Every function throws UsageError with a message naming the bad input;
-// rs485ctl turns that into exit status 2.
+// advee-rs485ctl turns that into exit status 2.
 #pragma once
 
 #include <chrono>

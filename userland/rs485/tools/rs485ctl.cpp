@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// rs485ctl: look at and talk to an RS-485/EIA-422 bus run by n_rs485.
+// advee-rs485ctl: look at and talk to an RS-485/EIA-422 bus run by n_rs485.
 // Subcommands: scan, xfer (raw), reset, reset-node, stats, watch, config.
 // Exit status: 0 ok, 1 protocol outcome not OK, 2 usage, 3 device/system error.
 #include <poll.h>
@@ -369,20 +369,20 @@ void details(CLI::App* cmd, const std::string& text) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "rs485ctl - inspect and drive an RS-485/EIA-422 bus run by the n_rs485 line discipline.\n\n"
+      "advee-rs485ctl - inspect and drive an RS-485/EIA-422 bus run by the n_rs485 line discipline.\n\n"
       "The bus is a tty (/dev/ttyTSU0, /dev/ttyS1, ...) or a bus name (a, b, power = /dev/rs485/NAME).\n"
       "The discipline is attached if it is not yet (number from /sys/module/n_rs485/parameters/ldisc,\n"
       "else 29). Addresses and numbers are decimal or 0x hex; durations take a unit (us, ms, s;\n"
-      "default ms). Transactions go through the kernel's queue, so rs485ctl can run next to the\n"
+      "default ms). Transactions go through the kernel's queue, so advee-rs485ctl can run next to the\n"
       "robot's drivers.",
-      "rs485ctl"};
+      "advee-rs485ctl"};
   app.footer(std::string("\n") + kExitCodes +
              "\nEXAMPLES\n"
-             "  rs485ctl -b /dev/ttyTSU0 scan\n"
-             "  rs485ctl -b a xfer 0x10 0x10                 # GET_BOTH of the SD1 at 0x10\n"
-             "  rs485ctl -b power xfer 0x01 0x02 ff 01       # PSC1: switch channel 0 on\n"
-             "  rs485ctl -b power --json watch --count 5\n"
-             "  rs485ctl -b a config set --timeout 20ms\n");
+             "  advee-rs485ctl -b /dev/ttyTSU0 scan\n"
+             "  advee-rs485ctl -b a xfer 0x10 0x10                 # GET_BOTH of the SD1 at 0x10\n"
+             "  advee-rs485ctl -b power xfer 0x01 0x02 ff 01       # PSC1: switch channel 0 on\n"
+             "  advee-rs485ctl -b power --json watch --count 5\n"
+             "  advee-rs485ctl -b a config set --timeout 20ms\n");
   app.require_subcommand(1);
   Global g;
   app.add_option("-b,--bus", g.bus, "Bus device: a tty path or a name under /dev/rs485/")->type_name("DEVICE")->envname("RS485_BUS");
@@ -481,13 +481,13 @@ int main(int argc, char** argv) {
     if (*config_cmd) return *config_set ? run_config_set(g, cfg) : run_config_get(g);
     (void)config_get;
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "rs485ctl: %s\nTry 'rs485ctl --help'.\n", e.what());
+    std::fprintf(stderr, "advee-rs485ctl: %s\nTry 'advee-rs485ctl --help'.\n", e.what());
     return kExitUsage;
   } catch (const std::system_error& e) {
-    std::fprintf(stderr, "rs485ctl: %s\n", e.what());
+    std::fprintf(stderr, "advee-rs485ctl: %s\n", e.what());
     return kExitSystem;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "rs485ctl: %s\n", e.what());
+    std::fprintf(stderr, "advee-rs485ctl: %s\n", e.what());
     return kExitSystem;
   }
   return kExitUsage;

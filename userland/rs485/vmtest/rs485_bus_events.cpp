@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
 // rs485-bus-events: VM check of Bus's event thread over the real stack
-// (simulated FPGA -> ts-uart -> n_rs485 -> Bus) with rs485-sim serving a
+// (simulated FPGA -> ts-uart -> n_rs485 -> Bus) with advee-rs485-sim serving a
 // PSC1 on a full-duplex bus. TAP 13 on stdout; exit 1 if a check failed.
 //
 //   rs485-bus-events RS485_SIM CONTROL_SOCKET [TTY [PSC1_ADDR]]

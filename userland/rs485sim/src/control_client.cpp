@@ -28,7 +28,7 @@ std::string control_request(const std::string& socket_path, const std::string& c
     throw std::system_error(ENAMETOOLONG, std::generic_category(), socket_path);
   std::memcpy(a.sun_path, socket_path.c_str(), socket_path.size() + 1);
   if (sendto(fd.get(), command.data(), command.size(), 0, reinterpret_cast<const sockaddr*>(&a), sizeof(a)) < 0)
-    throw std::system_error(errno, std::generic_category(), socket_path + " (is rs485-sim running?)");
+    throw std::system_error(errno, std::generic_category(), socket_path + " (is advee-rs485-sim running?)");
   pollfd p{fd.get(), POLLIN, 0};
   const int n = poll(&p, 1, static_cast<int>(timeout.count()));
   if (n < 0) throw std::system_error(errno, std::generic_category(), "control socket poll");

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// rs485-sim: the robot's RS-485 boards (BR-SD1, BR-SO1, BR-SBS1, BR-PSC1) as
+// advee-rs485-sim: the robot's RS-485 boards (BR-SD1, BR-SO1, BR-SBS1, BR-PSC1) as
 // behavioural models on the simulated FPGA's wires, several buses in one
 // process, configured by a YAML file and steered through a control socket.
 #include <fcntl.h>
@@ -30,7 +30,7 @@ using advee::UniqueFd;
 namespace {
 
 constexpr const char* kDescription =
-    "rs485-sim - simulated RS-485 boards of the Advee robot\n"
+    "advee-rs485-sim - simulated RS-485 boards of the Advee robot\n"
     "\n"
     "Answers the robot's 9-bit multidrop protocol (shared/specs/rs485-protocol.md) as\n"
     "the boards BR-SD1 (8 ultrasonic + 2 infrared distances, PAUSE sources), BR-SO1\n"
@@ -69,8 +69,8 @@ constexpr const char* kFooter =
     "error at run time or command answered 'error:'; 2 bad command line.\n"
     "\n"
     "EXAMPLES:\n"
-    "  rs485-sim -c robot.yaml -v\n"
-    "  rs485-sim --control /run/rs485-sim.sock --send 'set sd1@0x10 srf all 0.8'\n";
+    "  advee-rs485-sim -c robot.yaml -v\n"
+    "  advee-rs485-sim --control /run/rs485-sim.sock --send 'set sd1@0x10 srf all 0.8'\n";
 
 std::string timestamp() {
   timespec ts{};
@@ -95,7 +95,7 @@ int send_command(const std::string& path, const std::string& cmd) {
     std::printf("%s\n", reply.c_str());
     return reply.rfind("ok", 0) == 0 ? 0 : 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "rs485-sim: %s\n", e.what());
+    std::fprintf(stderr, "advee-rs485-sim: %s\n", e.what());
     return 1;
   }
 }
@@ -131,7 +131,7 @@ int run(SimConfig& cfg, bool verbose) {
   for (auto& b : cfg.buses) {
     UniqueFd fd(open(b.wire.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC));
     if (!fd) {
-      std::fprintf(stderr, "rs485-sim: bus %s: %s: %s%s\n", b.bus->name().c_str(), b.wire.c_str(),
+      std::fprintf(stderr, "advee-rs485-sim: bus %s: %s: %s%s\n", b.bus->name().c_str(), b.wire.c_str(),
                    std::strerror(errno), errno == ENOENT ? " (modprobe ts_uart ts7800_sim?)" : "");
       return 1;
     }
@@ -151,7 +151,7 @@ int run(SimConfig& cfg, bool verbose) {
     const auto a = unix_address(cfg.control);
     unlink(cfg.control.c_str());  // a stale socket of an earlier run
     if (!ctl || bind(ctl.get(), reinterpret_cast<const sockaddr*>(&a), sizeof(a))) {
-      std::fprintf(stderr, "rs485-sim: control socket %s: %s\n", cfg.control.c_str(), std::strerror(errno));
+      std::fprintf(stderr, "advee-rs485-sim: control socket %s: %s\n", cfg.control.c_str(), std::strerror(errno));
       return 1;
     }
   }
@@ -160,11 +160,11 @@ int run(SimConfig& cfg, bool verbose) {
   try {
     sfd.emplace(std::initializer_list<int>{SIGTERM, SIGINT});
   } catch (const std::system_error& e) {
-    std::fprintf(stderr, "rs485-sim: %s\n", e.what());
+    std::fprintf(stderr, "advee-rs485-sim: %s\n", e.what());
     return 1;
   }
 
-  std::string ready = "rs485-sim: ready:";
+  std::string ready = "advee-rs485-sim: ready:";
   for (const auto& w : wires) {
     ready += " bus " + w.bus->name() + " on " + w.path + " (";
     for (const auto& d : w.bus->devices()) ready += (d == w.bus->devices().front() ? "" : " ") + d->name();
@@ -188,7 +188,7 @@ int run(SimConfig& cfg, bool verbose) {
       w.bus->poll(now);
       for (const auto& tx : w.bus->take_due(now))
         if (!write_words(w.fd.get(), tx.words))
-          std::fprintf(stderr, "rs485-sim: bus %s: writing %s: %s\n", w.bus->name().c_str(), w.path.c_str(),
+          std::fprintf(stderr, "advee-rs485-sim: bus %s: writing %s: %s\n", w.bus->name().c_str(), w.path.c_str(),
                        errno ? std::strerror(errno) : "no room for 1 s");
       if (auto d = w.bus->next_deadline(); d && (!deadline || *d < *deadline)) deadline = d;
     }
@@ -201,13 +201,13 @@ int run(SimConfig& cfg, bool verbose) {
     }
     if (ppoll(pfds.data(), pfds.size(), tsp, nullptr) < 0) {
       if (errno == EINTR) continue;
-      std::perror("rs485-sim: ppoll");
+      std::perror("advee-rs485-sim: ppoll");
       rc = 1;
       break;
     }
     for (std::size_t i = 0; i < wires.size(); ++i) {
       if (pfds[i].revents & (POLLERR | POLLHUP | POLLNVAL)) {
-        std::fprintf(stderr, "rs485-sim: bus %s: %s went away\n", wires[i].bus->name().c_str(), wires[i].path.c_str());
+        std::fprintf(stderr, "advee-rs485-sim: bus %s: %s went away\n", wires[i].bus->name().c_str(), wires[i].path.c_str());
         rc = 1;
         stop = true;
       }
@@ -234,19 +234,19 @@ int run(SimConfig& cfg, bool verbose) {
     }
     if (pfds[sig_i].revents & POLLIN) {
       if (const auto si = sfd->read())
-        std::fprintf(stderr, "rs485-sim: %s, stopping\n", strsignal(static_cast<int>(si->ssi_signo)));
+        std::fprintf(stderr, "advee-rs485-sim: %s, stopping\n", strsignal(static_cast<int>(si->ssi_signo)));
       stop = true;
     }
   }
 
   for (const auto& w : wires) {
     const auto& r = w.bus->receiver_stats();
-    std::fprintf(stderr, "rs485-sim: bus %s: frames=%llu crc_errors=%llu truncated=%llu noise=%llu\n",
+    std::fprintf(stderr, "advee-rs485-sim: bus %s: frames=%llu crc_errors=%llu truncated=%llu noise=%llu\n",
                  w.bus->name().c_str(), static_cast<unsigned long long>(r.frames),
                  static_cast<unsigned long long>(r.crc_errors), static_cast<unsigned long long>(r.truncated),
                  static_cast<unsigned long long>(r.noise));
     for (const auto& d : w.bus->devices())
-      std::fprintf(stderr, "rs485-sim: %s:%s %s\n", w.bus->name().c_str(), d->name().c_str(),
+      std::fprintf(stderr, "advee-rs485-sim: %s:%s %s\n", w.bus->name().c_str(), d->name().c_str(),
                    control.execute("stats " + w.bus->name() + ":" + d->name(), Clock::now()).substr(3).c_str());
   }
   if (!cfg.control.empty()) unlink(cfg.control.c_str());
@@ -256,7 +256,7 @@ int run(SimConfig& cfg, bool verbose) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app(kDescription, "rs485-sim");
+  CLI::App app(kDescription, "advee-rs485-sim");
   app.footer(kFooter);
   std::string config, control, send;
   bool verbose = false, check = false;
@@ -284,7 +284,7 @@ int main(int argc, char** argv) {
     }
     return run(cfg, verbose);
   } catch (const std::exception& e) {  // ConfigError too: the file is read at run time
-    std::fprintf(stderr, "rs485-sim: %s\n", e.what());
+    std::fprintf(stderr, "advee-rs485-sim: %s\n", e.what());
     return 1;
   }
 }

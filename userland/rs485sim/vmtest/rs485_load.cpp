@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// rs485-load: the robot's real RS-485 load against rs485-sim - two BR-SD1
+// rs485-load: the robot's real RS-485 load against advee-rs485-sim - two BR-SD1
 // and one BR-SO1 on bus a polled at 4 Hz, one BR-SBS1 on bus b at 1 Hz - for
 // a given time. Checks that every poll completes with a reading or a
 // protocol outcome (a clear error), that no call takes longer than
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
       "rs485-load - poll simulated RS-485 boards at the robot's rates and check every call\n\n"
       "Bus a: BR-SD1 at --sd1 (two), BR-SO1 at --so1, every 250 ms (4 Hz); bus b: BR-SBS1 at\n"
       "--sbs1 every second. With --control, sets the simulator's readings first and then\n"
-      "checks every reading it gets against them. Runs rs485-sim first (see docs/rs485-sim.md).",
+      "checks every reading it gets against them. Runs advee-rs485-sim first (see docs/rs485-sim.md).",
       "rs485-load");
   std::string bus_a = "/dev/ttyTSU0", bus_b = "/dev/ttyTSU1", control;
   std::vector<std::string> sd1_addr{"0x10", "0x11"};
@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   long rss_slack_kb = 512;
   app.add_option("--bus-a", bus_a, "tty of bus a (SD1, SO1)")->capture_default_str();
   app.add_option("--bus-b", bus_b, "tty of bus b (SBS1)")->capture_default_str();
-  app.add_option("--control", control, "rs485-sim control socket: set readings, check them");
+  app.add_option("--control", control, "advee-rs485-sim control socket: set readings, check them");
   app.add_option("--sd1", sd1_addr, "addresses of the two SD1")->expected(2)->capture_default_str();
   app.add_option("--so1", so1_addr, "address of the SO1")->capture_default_str();
   app.add_option("--sbs1", sbs1_addr, "address of the SBS1")->capture_default_str();

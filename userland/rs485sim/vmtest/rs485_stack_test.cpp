@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// rs485-stack-test: the rs485 library's drivers against rs485-sim over the
+// rs485-stack-test: the rs485 library's drivers against advee-rs485-sim over the
 // real stack (simulated FPGA -> ts-uart -> n_rs485 -> library), TAP output.
 // Run by tests/vm/rs485/drivers.sh with tests/vm/rs485/stack.yaml, whose
 // devices and firmware versions this program expects.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// /scene.json from robot-sim's own example files.
+// /scene.json from advee-robot-sim's own example files.
 #include "advee/web/scene.hpp"
 
 #include <gtest/gtest.h>

@@ -118,11 +118,11 @@ int passwd(const std::string& file, const std::string& name, bool remove, bool r
 int main(int argc, char** argv) {
   CLI::App app{
       "advee-web: the Advee low level live in a browser.\n"
-      "Subscribes to every LCM channel of the robot (CM_*, LL_*) and to robot-sim's\n"
+      "Subscribes to every LCM channel of the robot (CM_*, LL_*) and to advee-robot-sim's\n"
       "ground truth SIM_DATA_POSE, converts each message to JSON\n"
       "{\"channel\":..,\"utime\":..,<fields>} and pushes it to every WebSocket client;\n"
       "serves the dashboard page (--root) and /scene.json (the robot outline, sensor\n"
-      "positions and room from robot-sim's --robot and --map files) over HTTP on the\n"
+      "positions and room from advee-robot-sim's --robot and --map files) over HTTP on the\n"
       "same port. Open http://HOST:PORT/ in a browser; with --tls-cert and --tls-key\n"
       "the port speaks only HTTPS and WSS (TLS 1.2 or 1.3): open https://HOST:PORT/.\n\n"
       "The bridge integrates LL_DATA_ODO itself (from the robot file's start pose) and\n"
@@ -192,10 +192,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--lcm", lcm_url, "LCM URL (default: LCM_DEFAULT_URL, else /etc/advee/lcm.conf, "
                                    "else LCM's default group)");
-  app.add_option("--robot", robot_file, "robot-sim robot file: outline, range finder and beacon "
+  app.add_option("--robot", robot_file, "advee-robot-sim robot file: outline, range finder and beacon "
                                         "scanner positions; \"\" = none")
       ->capture_default_str();
-  app.add_option("--map", map_file, "robot-sim map file: walls, obstacles, beacons; \"\" = none")
+  app.add_option("--map", map_file, "advee-robot-sim map file: walls, obstacles, beacons; \"\" = none")
       ->capture_default_str();
   app.add_option("--max-buffered", max_buffered, "bytes unsent on one client's socket beyond which "
                                                  "its messages are coalesced")
@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
   if (scene.contains("errors"))
     for (const auto& e : scene["errors"]) log_line("scene: " + e.get<std::string>());
   opt.scene_json = scene.dump();
-  // Odometry starts where robot-sim starts the robot (the robot file), or at 0.
+  // Odometry starts where advee-robot-sim starts the robot (the robot file), or at 0.
   advee::web::Pose2 odo_start;
   if (scene.contains("robot")) {
     const auto& s = scene["robot"]["start"];

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// canopen-sim-drive: one simulated CiA 402 drive on a SocketCAN interface
+// advee-canopen-sim-drive: one simulated CiA 402 drive on a SocketCAN interface
 // (vcan in the tests), as its own process. Fault injection at start-up by
 // option, at run time by signal: SIGUSR1 = EMCY 0x4210 + fault, SIGUSR2 =
 // heartbeat silence on/off. Prints one line per state change on stdout.
@@ -22,13 +22,13 @@
 using namespace advee::canopen;
 
 int main(int argc, char** argv) {
-  CLI::App app{"canopen-sim-drive: one simulated CiA 402 drive (EPOS or IclA profile) on a SocketCAN\n"
+  CLI::App app{"advee-canopen-sim-drive: one simulated CiA 402 drive (EPOS or IclA profile) on a SocketCAN\n"
                "interface, as its own process. Prints one line per NMT or CiA 402 state change.\n"
                "Signals: SIGUSR1 injects EMCY 0x4210 and a fault, SIGUSR2 toggles heartbeat silence,\n"
                "SIGINT and SIGTERM end it. An LSS slave (CiA 305, identity = 0x1018) answers on 0x7E5;\n"
                "with --unconfigured the drive has no node-ID and boots when an LSS master gives it one.\n"
                "Exit status: 0 ended by a signal, 1 the CAN interface failed, 2 bad command line or --eds file.",
-               "canopen-sim-drive"};
+               "advee-canopen-sim-drive"};
   std::string ifname = "vcan0";
   sim::DriveSimConfig cfg;
   sim::DriveFaults faults;
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   if (!cfg.eds_file.empty()) {
     // Checked before any I/O, like the other arguments.
     const DescriptionResult r = load_device_description(cfg.eds_file, cfg.node);
-    for (const auto& e : r.errors) std::fprintf(stderr, "canopen-sim-drive: %s\n", e.text().c_str());
+    for (const auto& e : r.errors) std::fprintf(stderr, "advee-canopen-sim-drive: %s\n", e.text().c_str());
     if (!r.description) return 2;
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(drive->tpdos_sent()),
                 static_cast<unsigned long long>(drive->sdo().requests()));
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "canopen-sim-drive: %s\n", e.what());
+    std::fprintf(stderr, "advee-canopen-sim-drive: %s\n", e.what());
     return 1;
   }
   return 0;

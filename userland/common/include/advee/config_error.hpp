@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
 // The one error type of every configuration file of the stack (module YAML,
-// the robot simulator's map and robot files, rs485-sim's buses): a file that
+// the robot simulator's map and robot files, advee-rs485-sim's buses): a file that
 // cannot be used. what() is "FILE:LINE: FIELD: what is wrong", or "FILE:
 // what is wrong" for the file as a whole; a program prints it and exits
 // (docs/command-line.md).

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
 // Signals as a file descriptor, the one wrapper of the stack (modules,
-// the CANopen loop, rs485ctl, rs485-sim): the listed signals are blocked in
+// the CANopen loop, advee-rs485ctl, advee-rs485-sim): the listed signals are blocked in
 // the calling thread (create this before any other thread, LCM's receive
 // thread included, so that every thread inherits the mask) and read from a
 // non-blocking signalfd. Destruction discards the signals still pending in

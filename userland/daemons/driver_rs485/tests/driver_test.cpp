@@ -338,7 +338,7 @@ TEST(Rs485Driver, OffNodeIsNotPolledUntilReset) {
   for (const auto& e : rx.errors) named |= e.text.find("reset-node 0x11") != std::string::npos;
   EXPECT_TRUE(named);
 
-  rear_state = static_cast<int>(rs485::NodeState::active);  // rs485ctl reset-node 0x11
+  rear_state = static_cast<int>(rs485::NodeState::active);  // advee-rs485ctl reset-node 0x11
   spin(m, 100ms);
   EXPECT_GT(a.count(0x11), polled);
   EXPECT_EQ(rx.errors_numbered(kErrRecovered), 1);

@@ -36,7 +36,7 @@ void NodeHealth::update_state(const NodeStatusFn& status) {
     case rs485::NodeState::off:
       errors_.report(Severity::Error, ErrorType::Device, kErrOff,
                      label() + " is off (error counter " + std::to_string(s->errors) +
-                         "): not polled until reset (rs485ctl reset-node " + hex + ")");
+                         "): not polled until reset (advee-rs485ctl reset-node " + hex + ")");
       break;
     case rs485::NodeState::active:
       errors_.report(Severity::Notice, ErrorType::Device, kErrRecovered,

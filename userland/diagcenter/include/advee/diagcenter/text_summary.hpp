@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
-// The plain-text summary of `diagnostic_center --text`: one block per
+// The plain-text summary of `advee-diagnostic-center --text`: one block per
 // period, one "topic key=value ..." line per subject, so that scripts grep
 // it. Missing data reads "none"; every data line ends with age=SECONDS since
 // its newest message, and stale=1 when that is older than three periods of

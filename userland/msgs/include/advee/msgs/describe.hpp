@@ -12,7 +12,7 @@
 
 namespace advee::msgs {
 
-// The ground truth of robot-sim (not a channel of the robot: not in kAllChannels).
+// The ground truth of advee-robot-sim (not a channel of the robot: not in kAllChannels).
 inline constexpr const char* kSimDataPose = "SIM_DATA_POSE";
 
 std::string describe(const lcm::ReceiveBuffer& rb, const std::string& channel);

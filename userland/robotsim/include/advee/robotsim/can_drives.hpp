@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
 // The robot's drives on a SocketCAN interface (vcan0 in tests, where
-// driver_canbus or canopenctl is the master): a DrivePair on its own event
-// loop thread, as canopen-sim-drive runs one drive. robot-sim's loop reads
+// driver_canbus or advee-canopenctl is the master): a DrivePair on its own event
+// loop thread, as advee-canopen-sim-drive runs one drive. advee-robot-sim's loop reads
 // the motion through command(); a mutex keeps the two threads apart.
 #pragma once
 
@@ -39,7 +39,7 @@ class CanDrives : public DriveSource {
   DriveCommand command(double time_s) override;
   DriveStatus status();
 
-  // Fault injection, as canopen-sim-drive's signals: EMCY + fault on a node,
+  // Fault injection, as advee-canopen-sim-drive's signals: EMCY + fault on a node,
   // heartbeat (and node guarding) silence of both drives on/off.
   void inject_fault(std::uint8_t node, std::uint16_t emcy_code);
   bool toggle_heartbeat_silence();

@@ -73,7 +73,7 @@ struct RobotDescription {
   IrModel ir;
   BeaconScanner scanner;
   std::vector<ThermalChannel> thermal;  // MAX6615 temp1, temp2
-  DriveUnits drives;                    // the CANopen drives' units (robot-sim --can)
+  DriveUnits drives;                    // the CANopen drives' units (advee-robot-sim --can)
 };
 
 RobotDescription parse_robot(const std::string& yaml_text, const std::string& name);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
 // Where the virtual robot's sensor values go (SensorSink) and where its
-// drive commands come from (DriveSource). robot-sim wires them to the
-// simulators: rs485-sim's control socket, the MAX6615 model's debugfs files.
+// drive commands come from (DriveSource). advee-robot-sim wires them to the
+// simulators: advee-rs485-sim's control socket, the MAX6615 model's debugfs files.
 #pragma once
 
 #include <functional>
@@ -26,7 +26,7 @@ struct DriveCommand {
 };
 
 // The propulsion speed and steering angle the drives report. The simulated
-// EPOS/IclA (canopen-sim-drive) have no outside hook yet: ScriptedDrive
+// EPOS/IclA (advee-canopen-sim-drive) have no outside hook yet: ScriptedDrive
 // stands in for them.
 class DriveSource {
  public:
@@ -46,13 +46,13 @@ class ScriptedDrive : public DriveSource {
   ScriptedPath path_;
 };
 
-// Sends the values as rs485-sim control commands ("set sd1@0x10 srf 3 1.25",
+// Sends the values as advee-rs485-sim control commands ("set sd1@0x10 srf 3 1.25",
 // "set so1@0x20 ticks L R", "set sbs1@0x30 beacon 2 123.45 200",
 // "set sd1@0x10 pause 1"), only those that changed since the last frame; the
 // PAUSE line as a BR-PSC1 PAUSE event ("event psc1@0x01 pause 1 1") whenever
 // the set of active sources changes (engaged while any is active).
 // `send` delivers one command and throws on an error reply
-// (rs485sim::control_ok in robot-sim, a recorder in the tests).
+// (rs485sim::control_ok in advee-robot-sim, a recorder in the tests).
 struct Rs485Devices {
   std::string sd1_front = "a:sd1@0x10", sd1_rear = "a:sd1@0x11";
   std::string so1 = "a:so1@0x20", sbs1 = "b:sbs1@0x30";

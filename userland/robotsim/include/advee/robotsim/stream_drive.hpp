@@ -2,7 +2,7 @@
 // A DriveSource fed by text lines "SPEED_MPS STEERING_DEG" on a file
 // descriptor (a pipe, a FIFO, stdin): the hook through which whatever reads
 // the simulated EPOS/IclA (or a person, or a test) drives the virtual robot
-// until canopen-sim-drive exposes its state. The last complete line holds;
+// until advee-canopen-sim-drive exposes its state. The last complete line holds;
 // until the first one the robot stands still.
 #pragma once
 

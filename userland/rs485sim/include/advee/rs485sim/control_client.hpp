@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
 // Client side of the simulator's control socket (a Unix datagram socket):
-// one command, one reply. Used by rs485-sim --send and by the test programs.
+// one command, one reply. Used by advee-rs485-sim --send and by the test programs.
 #pragma once
 
 #include <chrono>

@@ -14,7 +14,7 @@
 
 namespace advee::web {
 
-// The ground-truth pose of the virtual robot (robot-sim), not a robot channel.
+// The ground-truth pose of the virtual robot (advee-robot-sim), not a robot channel.
 inline constexpr std::string_view kSimPoseChannel = "SIM_DATA_POSE";
 
 // Every channel the bridge subscribes to: advee::msgs::kAllChannels, plus

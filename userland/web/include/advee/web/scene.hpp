@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
 // What the page draws besides the messages: the robot's outline, where its
 // range finders and beacon scanner sit, and the room (walls, obstacles,
-// beacons). Served as /scene.json from robot-sim's robot and map files, so
+// beacons). Served as /scene.json from advee-robot-sim's robot and map files, so
 // the plot and the virtual robot share one description.
 #pragma once
 

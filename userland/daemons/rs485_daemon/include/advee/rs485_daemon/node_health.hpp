@@ -3,7 +3,7 @@
 // the first failed transaction of a run of failures (warning), the first
 // good one after it (notice), and the kernel's CAN-like error state of the
 // node (rs485-protocol.md): error-passive (warning) and off (error). An off
-// node is not polled until its counter is reset (`rs485ctl reset-node`), as
+// node is not polled until its counter is reset (`advee-rs485ctl reset-node`), as
 // the protocol requires; polling resumes by itself once it is.
 #pragma once
 

@@ -44,7 +44,7 @@ struct DriveSimConfig {
   // A mechanical home switch: where travel() (the shaft's displacement since
   // power-on, kept across homing and NMT resets) meets it; when set, it
   // replaces home_switch_position. For a drive coupled to a mechanism
-  // (robot-sim's steering), whose switch does not move when the drive's
+  // (advee-robot-sim's steering), whose switch does not move when the drive's
   // position counter is re-referenced.
   std::optional<double> home_switch_travel = std::nullopt;
   std::int32_t home_offset = 0;  // 0x607C at power-on: the position homing sets at the switch (replaces the EDS's)
