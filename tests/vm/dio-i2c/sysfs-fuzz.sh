@@ -9,7 +9,7 @@
 #   around it, then direction, value, active_low and edge of the exported
 #   ones. Clean: EINVAL, EBUSY (a reserved or taken line), EPERM (value of an
 #   input), EIO (edge: the chip's lines have no interrupt, the gpio sysfs
-#   code's own answer), ENOENT;
+#   code's own answer), ENOENT, ERANGE (a number beyond unsigned int);
 # - the bit-banged I2C adapter's new_device and delete_device (random names
 #   and addresses, garbage). Clean: EINVAL, EBUSY (an address in use),
 #   ENOENT (no such client to delete).
@@ -21,13 +21,27 @@
 . "$VMTEST_REPO/tests/lib/sysfs-fuzz.sh"
 
 GPIOFS=/sys/class/gpio
-exported=()
+# The DIO lines have names: an exported line's directory is its name
+# (DIO_8), not gpioN. exported_lines sets LINES to the exported ones.
+exported_lines() {
+	local d
+	LINES=()
+	for d in "$GPIOFS"/*/value; do
+		[ -e "$d" ] && LINES+=("${d%/value}")
+	done
+}
+unexport_all() {
+	local g
+	for ((g = base; g < base + ngpio; g++)); do
+		echo "$g" >"$GPIOFS/unexport"
+	done 2>/dev/null
+	exported_lines
+	[ "${#LINES[@]}" = 0 ]
+}
 cleanup_fuzz() {
 	local g
 	if [ -n "${base:-}" ]; then
-		for ((g = base; g < base + ngpio; g++)); do
-			[ -e "$GPIOFS/gpio$g" ] && echo "$g" >"$GPIOFS/unexport" 2>/dev/null
-		done
+		unexport_all 2>/dev/null
 	fi
 	cleanup_all
 }
@@ -51,7 +65,7 @@ if [ -z "$base" ]; then
 	tap_skip "gpio: legacy GPIO attributes fuzzed" "no $GPIOFS in this kernel (CONFIG_GPIO_SYSFS unset)"
 	tap_skip "gpio: the lines work afterwards" "no $GPIOFS in this kernel (CONFIG_GPIO_SYSFS unset)"
 else
-	FZ_CLEAN_ERRNOS="Invalid argument|Device or resource busy|Operation not permitted|Input/output error|No such file or directory"
+	FZ_CLEAN_ERRNOS="Invalid argument|Numerical result out of range|Device or resource busy|Operation not permitted|Input/output error|No such file or directory"
 	RANDOM=7800
 	start=$SECONDS
 	for ((k = 0; k < n; k++)); do
@@ -63,11 +77,11 @@ else
 			f=$GPIOFS/unexport
 			if ((RANDOM % 3)); then v=$((base - 2 + RANDOM % (ngpio + 4))); else fz_value; v=$FZ_VAL; fi ;;
 		*)	# an attribute of an exported line
-			lines=("$GPIOFS"/gpio[0-9]*)
-			if [ ! -e "${lines[0]}" ]; then
+			exported_lines
+			if [ "${#LINES[@]}" = 0 ]; then
 				f=$GPIOFS/export v=$((base + RANDOM % ngpio))
 			else
-				f=${lines[RANDOM % ${#lines[@]}]}
+				f=${LINES[RANDOM % ${#LINES[@]}]}
 				case $((RANDOM % 4)) in
 				0) f+=/direction; pl=(in out high low) ;;
 				1) f+=/value; pl=(0 1) ;;
@@ -84,15 +98,14 @@ else
 	fz_report
 	tap_ok "gpio: every write succeeded or failed cleanly, both seen" \
 		test "$FZ_BAD" = 0 -a "$FZ_OK" -gt 0 -a "$FZ_CLEAN" -gt 0
-	for ((g = base; g < base + ngpio; g++)); do
-		[ -e "$GPIOFS/gpio$g" ] && echo "$g" >"$GPIOFS/unexport"
-	done
+	unexport_all
+	exported_lines
 	# DIO_8 (offset 7) through the character device after the fuzzing
 	gpioset "$DIO_CHIP" 7=0
 	l0=$(pin_level 7)
 	gpioset "$DIO_CHIP" 7=1
 	tap_is "gpio: every line unexported, DIO_8 drives low and releases" \
-		"$(ls -d "$GPIOFS"/gpio[0-9]* 2>/dev/null | wc -l) $l0$(pin_level 7)" "0 01"
+		"${#LINES[@]} $l0$(pin_level 7)" "0 01"
 fi
 
 # --- the adapter's new_device / delete_device ---------------------------------------
