@@ -16,6 +16,7 @@
 #   make unit            CTest in the ASan/UBSan build (VARIANTS="native asan": both)
 #   make vm-x86 / vm-arm / vm-debug  one VM lane (vm-debug: KASAN/lockdep kernel)
 #   make bench           the benchmarks: VM programs named bench* (TEST= selects)
+#   make fuzz            the fuzz programs at the goal's sizes on the debug kernel
 #   make install         install the built stack (DESTDIR= stages it; ARCH=arm
 #                        TARGET=armel|armhf the ARM build; MODULES=dkms|none)
 #   make dkms-source     the module sources into $(DESTDIR)/usr/src/advee-VERSION
@@ -42,7 +43,7 @@ TEST ?=
 export KVER KDIR TOP BUILD
 
 .PHONY: debs all default modules userland testprogs arm arm-modules arm-userland arm-testprogs \
-	check check-fast unit gates vm-x86 vm-arm vm-debug bench demo deps clean help \
+	check check-fast unit gates vm-x86 vm-arm vm-debug bench fuzz demo deps clean help \
 	install dkms-source
 
 ifeq ($(ARCH),arm)
@@ -54,7 +55,7 @@ endif
 all: modules userland testprogs
 
 help:
-	@sed -n '3,26p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,27p' $(TOP)/Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@$(TOP)/scripts/deps.sh
@@ -112,6 +113,15 @@ vm-debug:
 
 bench: modules testprogs userland
 	@VMTEST_BENCH=1 $(TOP)/tests/harness/vm-x86.sh --lane bench $(if $(TEST),--test "$(TEST)")
+
+# The fuzz programs at the goal's sizes of issue 26 (ADVEE_FUZZ_SCALE=full:
+# 100,000 ioctls on the discipline and on the wires, 10^6 wire characters,
+# 5,000 and 10,000 sysfs writes) on the debug kernel, lane fuzz; make check
+# runs the same programs at the ci sizes (docs/testing.md). TEST= selects.
+FUZZ_PROGRAMS := rs485proto/fuzz rs485proto/ioctlfuzz max6615/sysfs-fuzz dio-i2c/sysfs-fuzz
+fuzz:
+	@ADVEE_FUZZ_SCALE=full $(TOP)/tests/harness/vm-debug.sh --lane fuzz \
+		$(foreach t,$(or $(TEST),$(FUZZ_PROGRAMS)),--test $(t))
 
 # Installation (docs/install.md) ------------------------------------------------
 install:

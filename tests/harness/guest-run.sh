@@ -21,6 +21,8 @@
 #   VMTEST_SLOWDOWN        optional: how many times slower than a stock kernel
 #                          this guest's kernel runs (the debug lane: 4), for
 #                          the programs' timing limits (tsuart/traffic)
+#   VMTEST_FUZZ_SCALE      optional: ci (the default) or full, the sizes of the
+#                          fuzz programs (tests/lib/fuzz.h, fuzz_size in tap.sh)
 #   VMTEST_CONSOLE_RESULTS 1: also print results.tsv to the console (ARM lane)
 #   VMTEST_SHELL           1: after installing the modules, an interactive shell
 #                          on the console instead of the tests
@@ -34,6 +36,7 @@
 . "$1" || { echo "guest-run: cannot read job file $1" >/dev/console; echo o >/proc/sysrq-trigger; }
 export VMTEST_REPO VMTEST_BUILD VMTEST_LANE VMTEST_MODULES
 export VMTEST_SLOWDOWN="${VMTEST_SLOWDOWN:-1}"
+export VMTEST_FUZZ_SCALE="${VMTEST_FUZZ_SCALE:-ci}"
 export PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin
 export HOME=/root LC_ALL=C
 R=$VMTEST_RESULTS

@@ -158,6 +158,7 @@ while read -r suite prog path limit; do
 		die "test program $suite/$prog was not cross-built (run: scripts/build-testprogs.sh $progs)"
 done <"$results/tests.list"
 cp "$results/modules.list" "$results/tests.list" "$stage/vmtest/"
+fuzz_scale=$(fuzz_scale)
 cat >"$stage/vmtest/job.env" <<JOB
 VMTEST_LANE=$lane
 VMTEST_REPO=/repo
@@ -167,6 +168,7 @@ VMTEST_MODULES=/vmtest/modules.list
 VMTEST_INSTALL_MODULES=0
 VMTEST_TESTLIST=/vmtest/tests.list
 VMTEST_CONSOLE_RESULTS=1
+VMTEST_FUZZ_SCALE=$fuzz_scale
 JOB
 # The initramfs: the userland archive (built once per userland, shared by
 # the lanes) followed by this run's archive; the kernel unpacks both.

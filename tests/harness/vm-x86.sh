@@ -37,7 +37,10 @@
 #              (created here): `echo set_link net0 off >PATH.in`
 # Environment: VMTEST_VERBOSE=1 streams the guest console; VMTEST_SMP, VMTEST_MEM;
 #   VMTEST_SLOWDOWN=N multiplies every program timeout and the boot allowance
-#   (a slower kernel: the debug lane); VMTEST_APPEND adds kernel parameters.
+#   (a slower kernel: the debug lane); VMTEST_APPEND adds kernel parameters;
+#   ADVEE_FUZZ_SCALE=ci|full the sizes of the fuzz programs (default ci: those
+#   of make check; full: the goal's, make fuzz; docs/testing.md), passed to
+#   the guest as VMTEST_FUZZ_SCALE.
 # Exit status: 0 when every test passed (or was skipped with a reason), 1 otherwise.
 set -euo pipefail
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
@@ -133,6 +136,7 @@ else
 	list_tests x86_64 "$BUILD/tests/x86_64" "$TOP" "${tests[@]}" >"$results/tests.list"
 fi
 slowdown=${VMTEST_SLOWDOWN:-1}
+fuzz_scale=$(fuzz_scale)
 if [ "$slowdown" != 1 ]; then
 	awk -v f="$slowdown" '{ $4 *= f; print }' "$results/tests.list" >"$results/tests.list.tmp"
 	mv "$results/tests.list.tmp" "$results/tests.list"
@@ -151,6 +155,7 @@ VMTEST_MODROOT=$modroot/lib/modules/$kver
 VMTEST_MODBASE=$modbase
 VMTEST_TESTLIST=/run/vmtest/tests.list
 VMTEST_SLOWDOWN=$slowdown
+VMTEST_FUZZ_SCALE=$fuzz_scale
 VMTEST_CONSOLE_RESULTS=0
 VMTEST_SHELL=$shell
 VMTEST_HOST_RESULTS=$results

@@ -66,3 +66,13 @@ tap_finish() {
 	[ "$TAP_N" -gt 0 ] && [ "$TAP_SKIPPED" -eq "$TAP_N" ] && return 4
 	return 0
 }
+
+# fuzz_size CI FULL: print the size of a fuzz program for VMTEST_FUZZ_SCALE
+# (ci, the default: CI; full: FULL; docs/testing.md); any other value fails.
+fuzz_size() {
+	case ${VMTEST_FUZZ_SCALE:-ci} in
+	ci) echo "$1" ;;
+	full) echo "$2" ;;
+	*) echo "VMTEST_FUZZ_SCALE=$VMTEST_FUZZ_SCALE: ci or full" >&2; return 1 ;;
+	esac
+}

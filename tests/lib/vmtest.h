@@ -9,6 +9,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -49,6 +50,23 @@ static inline int wait_for_path(const char *path)
 		usleep(10000);
 	}
 	return -1;
+}
+
+/*
+ * fuzz_size(CI, FULL): the size of a fuzz program, from VMTEST_FUZZ_SCALE
+ * (the host's ADVEE_FUZZ_SCALE, docs/testing.md): CI in make check (unset or
+ * "ci"), FULL with "full" (make fuzz: the goal's sizes of issue 26). Any other
+ * value bails out: a typo must not quietly run the small size.
+ */
+static inline unsigned long fuzz_size(unsigned long ci, unsigned long full)
+{
+	const char *s = getenv("VMTEST_FUZZ_SCALE");
+
+	if (!s || !*s || !strcmp(s, "ci"))
+		return ci;
+	if (!strcmp(s, "full"))
+		return full;
+	tap_bail("VMTEST_FUZZ_SCALE=%s: ci or full", s);
 }
 
 #endif /* VMTEST_VMTEST_H */
