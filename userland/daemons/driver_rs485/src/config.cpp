@@ -58,8 +58,7 @@ Rs485Config parse_rs485_config(const ConfigNode& root) {
   n.allow_only({"bus", "rate_hz", "sd1", "so1", "sbs1"});
 
   // device is required: one instance per bus, no bus to guess.
-  const auto b = n.child("bus");
-  c.bus = rs485_daemon::parse_bus_section(b, b.get<std::string>("device"));
+  c.bus = rs485_daemon::parse_bus_section(n.child("bus"), std::nullopt);
 
   c.rate_hz = n.get<double>("rate_hz", c.rate_hz);
   if (!(c.rate_hz >= 0.1 && c.rate_hz <= 50)) n.fail("rate_hz", "must be between 0.1 and 50");

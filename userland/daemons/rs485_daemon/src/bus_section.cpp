@@ -5,10 +5,10 @@
 
 namespace advee::rs485_daemon {
 
-BusSection parse_bus_section(const module::ConfigNode& b, const std::string& default_device) {
+BusSection parse_bus_section(const module::ConfigNode& b, const std::optional<std::string>& default_device) {
   b.allow_only({"device", "baud", "timeout_ms", "retries"});
   BusSection s;
-  s.device = b.get<std::string>("device", default_device);
+  s.device = default_device ? b.get<std::string>("device", *default_device) : b.get<std::string>("device");
   if (s.device.empty()) b.fail("device", "must name a device (a path or a bus name such as a)");
   s.config.baud = b.get<std::uint32_t>("baud", s.config.baud);
   if (s.config.baud < 300 || s.config.baud > 4000000) b.fail("baud", "must be 300..4000000");

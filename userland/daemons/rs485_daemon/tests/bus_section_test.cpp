@@ -45,6 +45,12 @@ TEST(BusSectionTest, OutOfRangeAndUnknownKeysNameTheKey) {
   EXPECT_NE(error_of("{timeout_ms: 0.05}").find("timeout_ms: must be 0.1..10000"), std::string::npos);
   EXPECT_NE(error_of("{retries: 17}").find("retries: must be 0..16"), std::string::npos);
   EXPECT_NE(error_of("{device: ''}").find("device"), std::string::npos);
+  try {
+    parse_bus_section(module::ConfigNode::parse("{baud: 9600}", "test.yaml"), std::nullopt);
+    ADD_FAILURE() << "a missing device without a default was accepted";
+  } catch (const module::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("device"), std::string::npos) << e.what();
+  }
   const std::string unknown = error_of("{timeout: 20}");
   EXPECT_NE(unknown.find("test.yaml:1"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("timeout"), std::string::npos) << unknown;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <chrono>
+#include <optional>
 #include <string>
 
 #include "advee/module/config.hpp"
@@ -28,9 +29,9 @@ struct BusSection {
   }
 };
 
-// Keys device, baud, timeout_ms, retries, each optional (device defaults to
-// default_device); ranges as the kernel checks them (rs485::BusConfig).
-// Throws module::ConfigError naming file:line: key.
-BusSection parse_bus_section(const module::ConfigNode& bus, const std::string& default_device);
+// Keys device, baud, timeout_ms, retries; device is required when there is
+// no default_device, the others are optional. Ranges as the kernel checks
+// them (rs485::BusConfig). Throws module::ConfigError naming file:line: key.
+BusSection parse_bus_section(const module::ConfigNode& bus, const std::optional<std::string>& default_device);
 
 }  // namespace advee::rs485_daemon
